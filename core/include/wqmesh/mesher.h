@@ -1,0 +1,127 @@
+// wqmesh: the mesher, WQMESH of Cheng, Dey and Ray (2005), section 4.3:
+// INITIALIZE, CONFORM (rules 1-3), REFINE (rules 4-7) and PUMP.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "wqmesh/analysis.h"
+#include "wqmesh/quality.h"
+#include "wqmesh/types.h"
+
+namespace wqmesh {
+
+struct MeshOptions {
+  /// rho0 of rule 6: tets with circumradius / shortest edge above it are split
+  /// (the proof needs rho0 > 2 / (1 - tan(pi/8)) ~ 3.41; the paper's
+  /// experiments, and this default, use 2.2).
+  double rho0 = 2.2;
+  /// theta of rule 7 and PUMP, in degrees: tets with a dihedral angle at most
+  /// theta have their vertices prepared and pumped.
+  double theta_deg = 3.0;
+  /// false: QMESH alone (no rule 7, no PUMP).
+  bool pump = true;
+  /// Margin of the bounding box B, as a fraction of the input's largest extent.
+  double box_margin = 0.5;
+  /// The run stops with stopped = "limit" when the vertex count reaches it.
+  std::size_t max_vertices = 1'000'000;
+  /// Optional size bound beyond the paper: tets whose circumcenter lies in the
+  /// input's bounding box and whose circumradius exceeds it are split as in
+  /// rule 6 (0: none).
+  double max_size = 0;
+  /// PUMP visits the sliver vertices in passes; it stops after a pass that
+  /// improves nothing or after this many passes.
+  int max_pump_passes = 4;
+};
+
+/// Progress report: phase name ("initialize", "conform", "refine", "pump",
+/// "extract"), counts so far, and a fraction in [0, 1] of the whole run
+/// (an estimate: refinement has no known end).
+struct Progress {
+  std::string phase;
+  std::size_t vertices = 0;
+  std::size_t steps = 0;
+  double fraction = 0;
+};
+
+/// Called after a bounded amount of work (every 256 insertions or pump steps
+/// and at each phase change). Returns false to cancel the run.
+using ProgressCallback = std::function<bool(const Progress&)>;
+
+/// A protecting ball (section 4.2): a vertex ball (radius f(u)/4 at a sharp
+/// vertex u) or the diametric ball of a sharp subsegment doubled at the end of
+/// CONFORM.
+struct ProtectingBall {
+  Point3 center{{0, 0, 0}};
+  double radius = 0;
+  bool vertex_ball = false;
+};
+
+/// The class of an output tet. skinny: R/l above rho0; sliver: R/l at most rho0
+/// and a dihedral angle below theta; near a small input angle: the circumcenter
+/// lies on or inside a protecting ball (rule 6 refuses it) or a vertex v,
+/// weighted with N(v)^2/9, encroaches the two-times expansion of a protecting
+/// ball (c, r): |v - c|^2 <= (2r)^2 + N(v)^2/9 (rule 7 and PUMP skip it).
+enum class TetClass { good = 0, skinny_near = 1, sliver_near = 2, violation = 3 };
+
+struct PhaseStats {
+  std::string name;
+  double time_s = 0;
+  std::size_t points_inserted = 0;
+};
+
+struct MeshResult {
+  /// The interior tets (weighted: mesh.weights), their boundary triangles with
+  /// the input facet of each.
+  TetMesh mesh;
+  std::vector<TetQuality> quality;  ///< per tet, with the weights
+  std::vector<TetClass> tet_class;  ///< per tet
+  /// Per vertex of mesh: N(v), the nearest-neighbour distance at the end of
+  /// REFINE (the weight bound is N(v)^2/9).
+  std::vector<double> nearest_neighbour;
+  /// Per vertex of mesh: its index in the PLC when it is an input vertex, else -1.
+  std::vector<int> input_vertex;
+  std::vector<ProtectingBall> protecting_balls;
+  /// "" when done, "limit" (max_vertices reached) or "cancelled".
+  std::string stopped;
+  /// Every subsegment and subfacet is in the final triangulation.
+  bool conforming = false;
+  std::size_t input_points = 0;   ///< PLC vertices
+  std::size_t sharp_elements = 0; ///< sharp vertices + sharp edges
+  std::size_t points_inserted = 0;///< all, in the box too (box corners excluded)
+  std::size_t slivers_before_pump = 0;  ///< interior slivers at the end of REFINE
+  std::size_t slivers = 0, skinny = 0, near_small_angle = 0, violations = 0;
+  std::size_t pumped_vertices = 0;
+  /// Points inserted by each rule of CONFORM and REFINE: rule_points[i] for
+  /// rule i (1..7); rule_points[0] counts those of INITIALIZE.
+  std::array<std::size_t, 8> rule_points{};
+  std::vector<PhaseStats> phases;
+};
+
+/// Meshes the polyhedron bounded by `plc` (validated by build_plc, analysed by
+/// analyze) with WQMESH. Deterministic: the same input and options give the
+/// same mesh. Throws std::runtime_error on an internal failure.
+MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options = {},
+                           const ProgressCallback& progress = {});
+
+}  // namespace wqmesh
+
+namespace wqmesh {
+
+/// The volume enclosed by a PLC (divergence theorem over its facets' loops).
+double plc_volume(const PLC& plc);
+
+/// The statistics of a run as JSON, with at least the keys of the command
+/// line's contract: input_points, sharp_elements, points_inserted, vertices,
+/// tets, min_dihedral_deg, radius_edge_bins, dihedral_bins, slivers, skinny,
+/// near_small_angle, violations, volume_input, volume_mesh, protecting_balls,
+/// stopped, time_s, phases.
+/// `peak_memory_mb` (the caller's measure; negative: not written).
+std::string mesh_stats_json(const PLC& plc, const MeshResult& result, const MeshOptions& options,
+                            double time_s, double peak_memory_mb = -1, bool pretty = true);
+
+}  // namespace wqmesh

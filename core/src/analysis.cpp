@@ -1,0 +1,406 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// wqmesh: the input analysis of the paper, section 2: edge-edge, edge-facet
+// and dihedral angles, sharp edges and vertices, phi_m, the boxes, and (via
+// local_feature_size.cpp) f(u) at the sharp vertices (section 4.1). The JSON
+// form is written by analysis_json.cpp.
+//
+// Every yes/no decision (acute or not, convex or reflex, coplanar or not) is
+// the sign of a polynomial in the input doubles, evaluated by exact::sign, so
+// it is the same on every platform. Angle values are computed in double
+// precision with atan2 (accurate also near 0 and 180 degrees). phi_m is the
+// smallest of the input's edge-edge, edge-facet, internal and external
+// dihedral angles (the right angles of the box B are not counted).
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "exact.h"
+#include "wqmesh/analysis.h"
+
+namespace wqmesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- double-precision vectors ------------------------------------------------
+using V = Point3;
+V sub(const V& a, const V& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
+double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V cross(const V& a, const V& b) {
+  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+}
+double norm(const V& a) { return std::sqrt(dot(a, a)); }
+V scale(const V& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
+V normalized(const V& a) {
+  const double n = norm(a);
+  return n > 0 ? scale(a, 1 / n) : a;
+}
+/// The angle between two vectors, in degrees, in [0, 180].
+double angle_degrees(const V& a, const V& b) {
+  return std::atan2(norm(cross(a, b)), dot(a, b)) * (180 / kPi);
+}
+
+// ---- exact polynomials over a number type NT ----------------------------------
+template <class NT>
+struct V3 {
+  NT x, y, z;
+};
+template <class NT>
+V3<NT> lift(const Point3& p) {
+  return {NT(p[0]), NT(p[1]), NT(p[2])};
+}
+template <class NT>
+V3<NT> operator-(const V3<NT>& a, const V3<NT>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class NT>
+V3<NT> operator-(const V3<NT>& a) {
+  return {NT(0) - a.x, NT(0) - a.y, NT(0) - a.z};
+}
+template <class NT>
+NT dotn(const V3<NT>& a, const V3<NT>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class NT>
+V3<NT> crossn(const V3<NT>& a, const V3<NT>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+/// A facet's exact outward normal: (p[j] - p[i]) x (p[k] - p[i]) for three
+/// vertices i, j, k of the facet, chosen not collinear and ordered so that the
+/// cross product points outwards (the side from which the outer loop is
+/// counter-clockwise). `unit` is the same direction in double precision
+/// (Newell's normal of the outer loop, which is better conditioned).
+struct FacetFrame {
+  int i = -1, j = -1, k = -1;
+  V unit{{0, 0, 0}};
+  bool valid() const { return i >= 0; }
+};
+
+class Analyzer {
+ public:
+  Analyzer(const PLC& plc, const AnalysisOptions& options) : plc_(plc), options_(options) {}
+
+  Analysis run() {
+    const int nv = static_cast<int>(plc_.vertices.size());
+    vertex_edges_.assign(nv, {});
+    vertex_facets_.assign(nv, {});
+    for (int e = 0; e < static_cast<int>(plc_.edges.size()); ++e) {
+      vertex_edges_[plc_.edges[e].a].push_back(e);
+      vertex_edges_[plc_.edges[e].b].push_back(e);
+    }
+    frames_.resize(plc_.facets.size());
+    for (int f = 0; f < static_cast<int>(plc_.facets.size()); ++f) {
+      for (const auto& loop : plc_.facets[f].loops)
+        for (int v : loop) vertex_facets_[v].push_back(f);
+      frames_[f] = make_frame(f);
+    }
+    for (auto& list : vertex_facets_) {
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+    }
+
+    Analysis a;
+    a.box_margin = options_.box_margin;
+    boxes(a);
+    edge_edge_angles(a);
+    edge_facet_angles(a);
+    dihedral_angles(a);
+    sharp_elements(a);
+    a.lfs = local_feature_sizes(plc_, a.sharp_vertices, a.bounding_box);
+    return a;
+  }
+
+ private:
+  const Point3& P(int v) const { return plc_.vertices[v]; }
+
+  // ---- facet normals ------------------------------------------------------------
+  FacetFrame make_frame(int f) const {
+    FacetFrame fr;
+    const PlcFacet& facet = plc_.facets[f];
+    if (facet.loops.empty() || facet.loops[0].size() < 3) return fr;
+    const auto& outer = facet.loops[0];
+    // Newell's normal of the outer loop, relative to its first vertex: twice
+    // the vector area, so it points outwards for a counter-clockwise loop.
+    const V& o = P(outer[0]);
+    V newell{{0, 0, 0}};
+    for (std::size_t m = 1; m + 1 < outer.size(); ++m) {
+      const V c = cross(sub(P(outer[m]), o), sub(P(outer[m + 1]), o));
+      for (int q = 0; q < 3; ++q) newell[q] += c[q];
+    }
+    fr.unit = normalized(newell);
+
+    // The triple: outer[0], the loop vertex farthest from it, and the loop
+    // vertex farthest from the line through those two (well conditioned).
+    const int i = outer[0];
+    int j = -1, k = -1;
+    double best = -1;
+    for (int v : outer) {
+      const double d = dot(sub(P(v), o), sub(P(v), o));
+      if (d > best) best = d, j = v;
+    }
+    best = -1;
+    for (int v : outer) {
+      const double d = norm(cross(sub(P(j), o), sub(P(v), o)));
+      if (d > best) best = d, k = v;
+    }
+    auto collinear = [&](int a, int b, int c) {
+      for (int q = 0; q < 3; ++q) {
+        const int s = exact::sign([&](auto z) {
+          using NT = decltype(z);
+          const auto n = crossn(lift<NT>(P(b)) - lift<NT>(P(a)), lift<NT>(P(c)) - lift<NT>(P(a)));
+          return q == 0 ? n.x : q == 1 ? n.y : n.z;
+        });
+        if (s != 0) return false;
+      }
+      return true;
+    };
+    if (j == i || k == i || k == j || collinear(i, j, k)) {
+      // Rounding chose badly: search exactly for any non-collinear triple.
+      j = k = -1;
+      for (std::size_t m = 1; m < outer.size() && k < 0; ++m)
+        for (std::size_t r = m + 1; r < outer.size() && k < 0; ++r)
+          if (!collinear(i, outer[m], outer[r])) j = outer[m], k = outer[r];
+      if (k < 0) return fr;  // degenerate facet (not a valid PLC): no normal
+    }
+    // Orient (p[j] - p[i]) x (p[k] - p[i]) like the exact Newell normal of
+    // the outer loop, sum over its edges of p[m] x p[m+1]; the two are
+    // parallel, so the sign of their dot product is the orientation.
+    const int s = exact::sign([&](auto z) {
+      using NT = decltype(z);
+      const auto n = crossn(lift<NT>(P(j)) - lift<NT>(P(i)), lift<NT>(P(k)) - lift<NT>(P(i)));
+      V3<NT> w{z, z, z};
+      for (std::size_t m = 0; m < outer.size(); ++m) {
+        const auto c = crossn(lift<NT>(P(outer[m])), lift<NT>(P(outer[(m + 1) % outer.size()])));
+        w = {w.x + c.x, w.y + c.y, w.z + c.z};
+      }
+      return dotn(n, w);
+    });
+    if (s == 0) return fr;
+    if (s < 0) std::swap(j, k);
+    fr.i = i, fr.j = j, fr.k = k;
+    return fr;
+  }
+
+  template <class NT>
+  V3<NT> exact_normal(int f) const {
+    const FacetFrame& fr = frames_[f];
+    return crossn(lift<NT>(P(fr.j)) - lift<NT>(P(fr.i)), lift<NT>(P(fr.k)) - lift<NT>(P(fr.i)));
+  }
+
+  /// Sign of the orientation of point p with respect to the plane of facet f:
+  /// positive on the outer side.
+  int side_of_facet(int f, const Point3& p) const {
+    return exact::sign([&](auto z) {
+      using NT = decltype(z);
+      return dotn(exact_normal<NT>(f), lift<NT>(p) - lift<NT>(P(frames_[f].i)));
+    });
+  }
+
+  // ---- boxes (section 2) ---------------------------------------------------------
+  void boxes(Analysis& a) const {
+    if (plc_.vertices.empty()) return;
+    Box b{plc_.vertices[0], plc_.vertices[0]};
+    for (const auto& p : plc_.vertices)
+      for (int q = 0; q < 3; ++q) {
+        b.lo[q] = std::min(b.lo[q], p[q]);
+        b.hi[q] = std::max(b.hi[q], p[q]);
+      }
+    a.input_box = b;
+    const double extent = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+    const double grow = options_.box_margin * extent;
+    for (int q = 0; q < 3; ++q) {
+      a.bounding_box.lo[q] = b.lo[q] - grow;
+      a.bounding_box.hi[q] = b.hi[q] + grow;
+    }
+  }
+
+  int other_end(int e, int u) const { return plc_.edges[e].a == u ? plc_.edges[e].b : plc_.edges[e].a; }
+
+  // ---- edge-edge angles ------------------------------------------------------------
+  /// Every pair of input edges at a common vertex u, edge1 < edge2, ordered by
+  /// vertex then edges. Acute iff (v1 - u).(v2 - u) > 0, exactly.
+  void edge_edge_angles(Analysis& a) const {
+    for (int u = 0; u < static_cast<int>(plc_.vertices.size()); ++u) {
+      std::vector<int> es = vertex_edges_[u];
+      std::sort(es.begin(), es.end());
+      for (std::size_t m = 0; m < es.size(); ++m)
+        for (std::size_t r = m + 1; r < es.size(); ++r) {
+          const int v1 = other_end(es[m], u), v2 = other_end(es[r], u);
+          EdgeEdgeAngle ang{u, es[m], es[r], angle_degrees(sub(P(v1), P(u)), sub(P(v2), P(u))),
+                            exact::dot_sign(P(u), P(v1), P(v2)) > 0};
+          a.edge_edge.push_back(ang);
+          a.phi_m_degrees = std::min(a.phi_m_degrees, ang.degrees);
+        }
+    }
+  }
+
+  // ---- edge-facet angles -----------------------------------------------------------
+  /// For every edge uv and facet F with u a vertex of one of F's loops, uv not
+  /// an edge of F, and v exactly off F's plane: min over p in F, p != u, of the
+  /// angle puv. Ordered by vertex u, then edge, then facet.
+  void edge_facet_angles(Analysis& a) const {
+    for (int u = 0; u < static_cast<int>(plc_.vertices.size()); ++u) {
+      std::vector<int> es = vertex_edges_[u];
+      std::sort(es.begin(), es.end());
+      for (int e : es) {
+        const int v = other_end(e, u);
+        for (int f : vertex_facets_[u]) {
+          if (f == plc_.edges[e].facets[0] || f == plc_.edges[e].facets[1]) continue;
+          if (!frames_[f].valid() || side_of_facet(f, P(v)) == 0) continue;
+          EdgeFacetAngle ang{u, e, f, edge_facet_degrees(u, v, f), edge_facet_acute(u, v, f)};
+          a.edge_facet.push_back(ang);
+          a.phi_m_degrees = std::min(a.phi_m_degrees, ang.degrees);
+        }
+      }
+    }
+  }
+
+  /// Exact: the angle is acute iff (p - u).(v - u) > 0 for some p in F. That
+  /// function of p is linear, so over the polygon F it is largest at a
+  /// vertex; it is 0 at u, so the test runs over the other loop vertices.
+  bool edge_facet_acute(int u, int v, int f) const {
+    for (const auto& loop : plc_.facets[f].loops)
+      for (int p : loop)
+        if (p != u && exact::dot_sign(P(u), P(p), P(v)) > 0) return true;
+    return false;
+  }
+
+  /// Value (double precision). Every ray from u through a point p of F leaves
+  /// F through its boundary, so the directions from u to F \ {u} are the
+  /// directions to the boundary of F. For each boundary segment ab of F we take
+  /// the smallest angle between w = v - u and the arc of directions that ab
+  /// subtends from u: a segment with endpoint u subtends the single direction
+  /// to its other end; otherwise the arc is the cone spanned by a - u and
+  /// b - u (less than 180 degrees wide). If the projection of w on F's plane
+  /// lies inside that cone, the smallest angle is the angle between w and the
+  /// plane; else, as the angle to a direction varies unimodally along the arc,
+  /// it is the angle to the nearer endpoint direction. The answer is the
+  /// minimum over all segments of all loops.
+  ///
+  /// This is the paper's definition taken literally: p ranges over all of F,
+  /// not only near u. On a non-convex facet a part of F seen from u across a
+  /// notch counts too, so the angle can be much smaller than the local angle
+  /// between uv and the sector of F at u (fandisk.off: 0.003 degrees where an
+  /// almost coplanar triangle fills a notch of a merged facet, against about
+  /// 40 degrees locally). The exact acuteness test above is literal too.
+  double edge_facet_degrees(int u, int v, int f) const {
+    const V w = sub(P(v), P(u));
+    const V& n = frames_[f].unit;
+    const double wn = dot(w, n);
+    const double plane_angle =
+        std::atan2(std::fabs(wn), norm(sub(w, scale(n, wn)))) * (180 / kPi);
+    double best = 180;
+    for (const auto& loop : plc_.facets[f].loops) {
+      const std::size_t m = loop.size();
+      for (std::size_t r = 0; r < m; ++r) {
+        const int a = loop[r], b = loop[(r + 1) % m];
+        if (a == u || b == u) {
+          best = std::min(best, angle_degrees(w, sub(P(a == u ? b : a), P(u))));
+          continue;
+        }
+        const V da = sub(P(a), P(u)), db = sub(P(b), P(u));
+        const V c = cross(da, db);
+        const double ea = angle_degrees(w, da), eb = angle_degrees(w, db);
+        // cross(da, w).c only sees the component of w in the plane, as does
+        // cross(w, db).c; both non-negative means inside the cone.
+        const bool inside = norm(c) > 0 && dot(cross(da, w), c) >= 0 && dot(cross(w, db), c) >= 0;
+        best = std::min(best, inside ? std::min({plane_angle, ea, eb}) : std::min(ea, eb));
+      }
+    }
+    return best;
+  }
+
+  // ---- dihedral angles ---------------------------------------------------------------
+  /// The direction of edge e as traversed by a loop of facet f: (from, to).
+  std::pair<int, int> traversal(int e, int f) const {
+    const PlcEdge& edge = plc_.edges[e];
+    for (const auto& loop : plc_.facets[f].loops) {
+      const std::size_t m = loop.size();
+      for (std::size_t r = 0; r < m; ++r) {
+        const int x = loop[r], y = loop[(r + 1) % m];
+        if ((x == edge.a && y == edge.b) || (x == edge.b && y == edge.a)) return {x, y};
+      }
+    }
+    return {-1, -1};  // not a valid PLC: the edge is not on its facet's boundary
+  }
+
+  /// At edge ab with facets F1, F2: t_i = n_i x e_i, where n_i is F_i's exact
+  /// outward normal and e_i the edge direction in F_i's loop, is the direction
+  /// into F_i perpendicular to ab (the interior of a facet is to the left of
+  /// its boundary seen from outside). The angle between t1 and t2 is the
+  /// dihedral angle on one side; the edge is convex iff F2 goes to the inner
+  /// side of F1's plane, n1.t2 < 0, and then internal = angle(t1, t2), else
+  /// internal = 360 - angle(t1, t2). The edge is sharp iff the internal angle
+  /// (convex edge) or the external one (reflex edge) is acute, that is iff
+  /// t1.t2 > 0 in both cases. Both signs are exact (polynomials of degree 5
+  /// and 6 in the input).
+  void dihedral_angles(Analysis& a) const {
+    for (int e = 0; e < static_cast<int>(plc_.edges.size()); ++e) {
+      const int f1 = plc_.edges[e].facets[0], f2 = plc_.edges[e].facets[1];
+      // Outside the contract (a missing or degenerate facet, an edge not on
+      // its facet's boundary) the edge gets 180 / 180, not sharp, and does not
+      // count for phi_m: analyze never throws.
+      DihedralAngle d{e, 180, 180, false};
+      if (f1 < 0 || f2 < 0 || !frames_[f1].valid() || !frames_[f2].valid()) {
+        a.dihedral.push_back(d);
+        continue;
+      }
+      const auto [x1, y1] = traversal(e, f1);
+      const auto [x2, y2] = traversal(e, f2);
+      if (x1 < 0 || x2 < 0) {
+        a.dihedral.push_back(d);
+        continue;
+      }
+      auto tangent = [&](int f, int x, int y, auto z) {
+        using NT = decltype(z);
+        return crossn(exact_normal<NT>(f), lift<NT>(P(y)) - lift<NT>(P(x)));
+      };
+      const int convex_sign = exact::sign([&, x2 = x2, y2 = y2](auto z) {
+        using NT = decltype(z);
+        return dotn(exact_normal<NT>(f1), tangent(f2, x2, y2, z));
+      });
+      const int wedge_sign = exact::sign([&, x1 = x1, y1 = y1, x2 = x2, y2 = y2](auto z) {
+        return dotn(tangent(f1, x1, y1, z), tangent(f2, x2, y2, z));
+      });
+      const V t1 = cross(frames_[f1].unit, normalized(sub(P(y1), P(x1))));
+      const V t2 = cross(frames_[f2].unit, normalized(sub(P(y2), P(x2))));
+      const double wedge = angle_degrees(t1, t2);
+      const bool convex = convex_sign < 0;
+      d.internal_degrees = convex ? wedge : 360 - wedge;
+      d.external_degrees = 360 - d.internal_degrees;
+      d.sharp = wedge_sign > 0;
+      a.dihedral.push_back(d);
+      a.phi_m_degrees = std::min({a.phi_m_degrees, d.internal_degrees, d.external_degrees});
+    }
+  }
+
+  // ---- sharp elements ------------------------------------------------------------------
+  void sharp_elements(Analysis& a) const {
+    std::vector<char> sharp(plc_.vertices.size(), 0);
+    for (const auto& ang : a.edge_edge)
+      if (ang.acute) sharp[ang.vertex] = 1;
+    for (const auto& ang : a.edge_facet)
+      if (ang.acute) sharp[ang.vertex] = 1;
+    for (const auto& d : a.dihedral)
+      if (d.sharp) {
+        a.sharp_edges.push_back(d.edge);
+        sharp[plc_.edges[d.edge].a] = sharp[plc_.edges[d.edge].b] = 1;
+      }
+    for (int v = 0; v < static_cast<int>(sharp.size()); ++v)
+      if (sharp[v]) a.sharp_vertices.push_back(v);
+  }
+
+  const PLC& plc_;
+  AnalysisOptions options_;
+  std::vector<std::vector<int>> vertex_edges_, vertex_facets_;
+  std::vector<FacetFrame> frames_;
+};
+
+}  // namespace
+
+Analysis analyze(const PLC& plc, const AnalysisOptions& options) {
+  return Analyzer(plc, options).run();
+}
+
+}  // namespace wqmesh

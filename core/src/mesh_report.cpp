@@ -1,0 +1,90 @@
+// wqmesh: the statistics of a meshing run as JSON (see wqmesh/mesher.h).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <cmath>
+
+#include "wqmesh/json.h"
+#include "wqmesh/mesher.h"
+
+namespace wqmesh {
+
+double plc_volume(const PLC& plc) {
+  // V = 1/3 sum over facets of (a point of F) . (area vector of F); the area
+  // vector of a facet is the sum over its loops (holes turn the other way).
+  double volume = 0;
+  for (const PlcFacet& f : plc.facets) {
+    const Point3& o = plc.vertices[f.loops[0][0]];
+    for (const auto& loop : f.loops) {
+      double area[3] = {0, 0, 0};
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const Point3& p = plc.vertices[loop[i]];
+        const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
+        const double a[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+        const double b[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
+        area[0] += a[1] * b[2] - a[2] * b[1];
+        area[1] += a[2] * b[0] - a[0] * b[2];
+        area[2] += a[0] * b[1] - a[1] * b[0];
+      }
+      volume += (o[0] * area[0] + o[1] * area[1] + o[2] * area[2]) / 6;
+    }
+  }
+  return volume;
+}
+
+std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptions& options, double time_s,
+                            double peak_memory_mb, bool pretty) {
+  const MeshStats s = mesh_stats(r.mesh, r.quality);
+  JsonWriter j(pretty);
+  j.begin_object();
+  j.field("input_points", r.input_points);
+  j.field("sharp_elements", r.sharp_elements);
+  j.field("points_inserted", r.points_inserted);
+  j.field("vertices", r.mesh.vertices.size());
+  j.field("tets", r.mesh.tets.size());
+  j.field("min_dihedral_deg", r.mesh.tets.empty() ? 0.0 : s.min_dihedral_deg);
+  j.key("radius_edge_bins").begin_object();
+  j.field("0.6-1.4", s.radius_edge_bins[0]).field("1.4-2.2", s.radius_edge_bins[1]).field(">2.2", s.radius_edge_bins[2]);
+  j.end_object();
+  j.key("dihedral_bins").begin_object();
+  j.field("0-3", s.dihedral_bins[0]).field("3-5", s.dihedral_bins[1]).field("5-10", s.dihedral_bins[2]);
+  j.end_object();
+  j.field("slivers", r.slivers);
+  j.field("skinny", r.skinny);
+  j.field("near_small_angle", r.near_small_angle);
+  j.field("violations", r.violations);
+  j.field("slivers_before_pump", r.slivers_before_pump);
+  j.field("pumped_vertices", r.pumped_vertices);
+  j.field("volume_input", plc_volume(plc));
+  j.field("volume_mesh", s.volume);
+  j.field("conforming", r.conforming);
+  j.field("stopped", r.stopped);
+  j.field("time_s", time_s);
+  if (peak_memory_mb >= 0) j.field("peak_memory_mb", peak_memory_mb);
+  j.field("tets_per_second", time_s > 0 ? double(r.mesh.tets.size()) / time_s : 0.0);
+  j.key("options").begin_object();
+  j.field("rho0", options.rho0).field("theta_deg", options.theta_deg).field("pump", options.pump);
+  j.field("box_margin", options.box_margin).field("max_vertices", options.max_vertices);
+  j.field("max_size", options.max_size);
+  j.end_object();
+  j.key("rule_points").begin_array();
+  for (std::size_t n : r.rule_points) j.value(n);
+  j.end_array();
+  j.key("phases").begin_array();
+  for (const PhaseStats& p : r.phases) {
+    j.begin_object();
+    j.field("name", p.name).field("time_s", p.time_s).field("points_inserted", p.points_inserted);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("protecting_balls").begin_array();
+  for (const ProtectingBall& b : r.protecting_balls) {
+    j.begin_object();
+    j.key("center").begin_array().value(b.center[0]).value(b.center[1]).value(b.center[2]).end_array();
+    j.field("radius", b.radius).field("vertex_ball", b.vertex_ball);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+  return j.str();
+}
+
+}  // namespace wqmesh

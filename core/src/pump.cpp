@@ -1,0 +1,278 @@
+// wqmesh: PUMP (paper, section 4.3; sliver exudation of Cheng, Dey,
+// Edelsbrunner, Facello and Teng, adapted with nearest-neighbour distances).
+// Each vertex of a tet with a dihedral angle of theta or less, whose weighted
+// point (weight N(v)^2/9) does not encroach the two-times expansion of a
+// protecting ball, gets the weight in [0, N(v)^2/9] that maximises the smallest
+// dihedral angle of its incident tets inside the polyhedron, in the weighted
+// Delaunay triangulation.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "mesher_state.h"
+#include "wqmesh/quality.h"
+
+namespace wqmesh::mesher {
+
+namespace {
+
+using TetKey = std::array<int, 4>;
+TetKey key_of(Tet t) {
+  std::sort(t.begin(), t.end());
+  return t;
+}
+struct TetKeyHash {
+  std::size_t operator()(const TetKey& t) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int x : t) h = (h ^ std::uint64_t(std::uint32_t(x))) * 1099511628211ull;
+    return std::size_t(h);
+  }
+};
+
+// The orthocenter z and orthoradius^2 of four weighted points.
+bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, double& z2) {
+  const Point3& p0 = tri.point(t[0]);
+  const double w0 = tri.weight(t[0]);
+  double m[3][4];
+  for (int r = 0; r < 3; ++r) {
+    const Point3& p = tri.point(t[r + 1]);
+    for (int k = 0; k < 3; ++k) m[r][k] = 2 * (p[k] - p0[k]);
+    m[r][3] = dot(p, p) - tri.weight(t[r + 1]) - dot(p0, p0) + w0;
+  }
+  for (int col = 0; col < 3; ++col) {
+    int piv = col;
+    for (int r = col + 1; r < 3; ++r)
+      if (std::fabs(m[r][col]) > std::fabs(m[piv][col])) piv = r;
+    if (m[piv][col] == 0) return false;
+    std::swap(m[col], m[piv]);
+    for (int r = 0; r < 3; ++r)
+      if (r != col) {
+        const double f = m[r][col] / m[col][col];
+        for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
+      }
+  }
+  z = {{m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]}};
+  z2 = dist2(p0, z) - w0;
+  return true;
+}
+
+}  // namespace
+
+/// The state of PUMP: inside/outside labels of cells (kept as the weighted
+/// triangulation changes), the walls (input subfacets) and, per vertex, the
+/// subsegments and subfacets whose presence must be kept.
+class Pump {
+ public:
+  explicit Pump(Mesher& m) : m_(m), tri_(m.tri_) {}
+
+  void run() {
+    const RegularTriangulation::CellGraph g = tri_.cell_graph();
+    const std::vector<char> inside = m_.interior_labels(g);
+    for (std::size_t i = 0; i < g.cells.size(); ++i) labels_[key_of(g.cells[i])] = inside[i];
+    vertex_facets_.assign(m_.verts_.size(), {});
+    for (const Subfacet& h : m_.subfacets()) {
+      const Tri s = sorted(h.v);
+      if (!m_.dom_.is_box_facet(h.facet)) walls_.insert(s);
+      for (int x : h.v) vertex_facets_[x].push_back(s);
+    }
+    // Candidates: vertices of inside tets with a dihedral angle <= theta,
+    // worst first.
+    std::vector<std::pair<double, int>> cand;
+    for (std::size_t i = 0; i < g.cells.size(); ++i) {
+      if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
+      const double a = angle_of(g.cells[i]);
+      if (a <= m_.opt_.theta_deg)
+        for (int v : g.cells[i]) cand.push_back({a, v});
+    }
+    for (int pass = 0; pass < m_.opt_.max_pump_passes && !cand.empty(); ++pass) {
+      std::sort(cand.begin(), cand.end());
+      std::vector<char> seen(m_.verts_.size(), 0);
+      std::vector<std::pair<double, int>> next;
+      bool improved = false;
+      for (const auto& [a, v] : cand) {
+        if (seen[v]) continue;
+        seen[v] = 1;
+        if (!m_.tick()) return;
+        const double w = m_.nn_[v] * m_.nn_[v] / 9;
+        if (m_.encroaches_expanded_ball(tri_.point(v), w)) continue;
+        if (pump_vertex(v, w)) improved = true;
+        // Slivers left or made around v are visited in the next pass.
+        std::vector<Tet> star;
+        tri_.incident_cells(v, star);
+        for (const Tet& t : star) {
+          if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
+          const double b = angle_of(t);
+          if (b <= m_.opt_.theta_deg)
+            for (int x : t) next.push_back({b, x});
+        }
+      }
+      if (!improved) break;
+      cand.swap(next);
+    }
+    for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
+  }
+
+ private:
+  double angle_of(const Tet& t) const {
+    return tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3])).min_dihedral_deg;
+  }
+
+  bool is_wall(int a, int b, int c) const { return walls_.count(sorted({{a, b, c}})) > 0; }
+
+  // The label of a cell: inside (1) or outside (0). Cells made by a weight
+  // change take the label of their neighbour across a facet, flipped when the
+  // facet is a wall; the changed region is surrounded by cells known before.
+  char label(const Tet& t) {
+    if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
+    const auto it = labels_.find(key_of(t));
+    if (it != labels_.end()) return it->second;
+    std::vector<Tet> todo{t};
+    for (int round = 0; round < 64 && !todo.empty(); ++round) {
+      std::vector<Tet> later;
+      for (const Tet& c : todo) {
+        if (labels_.count(key_of(c))) continue;
+        bool done = false;
+        for (int k = 0; k < 4 && !done; ++k) {
+          const int a = c[(k + 1) % 4], b = c[(k + 2) % 4], d = c[(k + 3) % 4];
+          if (a == kInfinite || b == kInfinite || d == kInfinite) continue;
+          Tet c1, c2;
+          if (!tri_.facet_cells(a, b, d, c1, c2)) continue;
+          const Tet& other = key_of(c1) == key_of(c) ? c2 : c1;
+          if (m_.flat_on_facet(other)) continue;  // its label says nothing
+          char lo;
+          if (std::count(other.begin(), other.end(), kInfinite)) {
+            lo = 0;
+          } else {
+            const auto jt = labels_.find(key_of(other));
+            if (jt == labels_.end()) {
+              later.push_back(other);
+              continue;
+            }
+            lo = jt->second;
+          }
+          labels_[key_of(c)] = is_wall(a, b, d) ? char(1 - lo) : lo;
+          done = true;
+        }
+        if (!done) later.push_back(c);
+      }
+      // Retry the cell itself after its neighbours.
+      if (!labels_.count(key_of(t))) later.push_back(t);
+      todo.swap(later);
+    }
+    const auto jt = labels_.find(key_of(t));
+    return jt != labels_.end() ? jt->second : 0;
+  }
+
+  // Whether the features around v are all in the triangulation.
+  bool conforming(const std::vector<std::uint64_t>& segs, const std::vector<Tri>& facets) const {
+    for (std::uint64_t k : segs) {
+      const Subsegment& s = m_.segs_.at(k);
+      if (!tri_.is_edge(s.a, s.b)) return false;
+    }
+    for (const Tri& t : facets)
+      if (!tri_.is_facet(t[0], t[1], t[2])) return false;
+    return true;
+  }
+
+  // The smallest dihedral angle of the inside tets around v at weight w, or
+  // -1 when the weight cannot be taken (hidden, or a feature disappears).
+  double evaluate(int v, double w, const std::vector<std::uint64_t>& segs, const std::vector<Tri>& facets) {
+    if (!tri_.set_weight(v, w)) return -1;
+    if (!conforming(segs, facets)) return -1;
+    std::vector<Tet> star;
+    tri_.incident_cells(v, star);
+    double worst = 180;
+    for (const Tet& t : star)
+      if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
+    return worst;
+  }
+
+  // The next weight above w at which the star of v changes: a cell across a
+  // facet of v's link joins the star when v's power distance to its
+  // orthosphere becomes negative.
+  double next_critical(int v, double w, double cap) const {
+    std::vector<Tet> star;
+    tri_.incident_cells(v, star);
+    double next = cap;
+    const Point3& pv = tri_.point(v);
+    for (const Tet& t : star) {
+      int i = 0;
+      while (t[i] != v) ++i;
+      const int a = t[(i + 1) % 4], b = t[(i + 2) % 4], c = t[(i + 3) % 4];
+      if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
+      Tet c1, c2;
+      if (!tri_.facet_cells(a, b, c, c1, c2)) continue;
+      const Tet& other = std::count(c1.begin(), c1.end(), v) ? c2 : c1;
+      if (std::count(other.begin(), other.end(), kInfinite)) continue;
+      Point3 z;
+      double z2;
+      if (!orthosphere(tri_, other, z, z2)) continue;
+      const double critical = dist2(pv, z) - z2;
+      if (critical > w && critical < next) next = critical;
+    }
+    return next;
+  }
+
+  bool pump_vertex(int v, double wmax) {
+    // The features whose presence is checked: subsegments and subfacets at v
+    // and at its neighbours (a weight change of v only changes its star).
+    std::vector<int> ring;
+    tri_.adjacent_vertices(v, ring);
+    ring.push_back(v);
+    std::vector<std::uint64_t> segs;
+    std::vector<Tri> facets;
+    for (int x : ring) {
+      for (std::uint64_t k : m_.vertex_segs_[x]) segs.push_back(k);
+      for (const Tri& t : vertex_facets_[x]) facets.push_back(t);
+    }
+    std::sort(segs.begin(), segs.end());
+    segs.erase(std::unique(segs.begin(), segs.end()), segs.end());
+    std::sort(facets.begin(), facets.end());
+    facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+
+    const double w0 = tri_.weight(v);
+    const double base = evaluate(v, w0, segs, facets);
+    double best = base, best_w = w0;
+    // Walk the weight interval [0, wmax] from one critical weight to the next;
+    // the star, hence the smallest angle, is constant between two of them.
+    double cw = 0;
+    evaluate(v, cw, segs, facets);
+    for (int step = 0; step < 256; ++step) {
+      const double c = next_critical(v, cw, wmax);
+      const double sample = 0.5 * (cw + c);
+      const double q = evaluate(v, sample, segs, facets);
+      if (q > best) {
+        best = q;
+        best_w = sample;
+      }
+      if (c >= wmax) break;
+      cw = c + 1e-9 * wmax;
+      if (cw >= wmax) break;
+      if (evaluate(v, cw, segs, facets) < 0) {
+        // A weight past a critical one that breaks conformity: the rest of
+        // the interval is still searched from there.
+      }
+    }
+    evaluate(v, best_w, segs, facets);
+    return best > base;
+  }
+
+  Mesher& m_;
+  RegularTriangulation& tri_;
+  std::unordered_map<TetKey, char, TetKeyHash> labels_;
+  std::unordered_set<Tri, TriHash> walls_;
+  std::vector<std::vector<Tri>> vertex_facets_;
+};
+
+void Mesher::pump() {
+  phase_ = Phase::pump;
+  // N(v), the nearest-neighbour distance in the unweighted Del V at the end
+  // of REFINE; it bounds the weights and does not change when they do.
+  nn_.resize(verts_.size());
+  for (std::size_t v = 0; v < verts_.size(); ++v) nn_[v] = nearest_neighbour(static_cast<int>(v));
+  Pump(*this).run();
+}
+
+}  // namespace wqmesh::mesher

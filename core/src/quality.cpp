@@ -1,0 +1,229 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// wqmesh: shape measures of tetrahedra (paper, section 3) and mesh statistics
+// (paper, section 6 and Table 2). See wqmesh/quality.h for the contracts.
+//
+// These are measurements for reporting, not decisions: they are evaluated in
+// plain double arithmetic (no exact predicates) and are only required to be
+// accurate for non-degenerate tetrahedra and well-defined (no NaN) otherwise.
+#include "wqmesh/quality.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace wqmesh {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Point3 sub(const Point3& p, const Point3& q) { return {{p[0] - q[0], p[1] - q[1], p[2] - q[2]}}; }
+
+double dot(const Point3& u, const Point3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
+
+Point3 cross(const Point3& u, const Point3& v) {
+  return {{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}};
+}
+
+double norm(const Point3& u) { return std::sqrt(dot(u, u)); }
+
+/// The angle between u and v in degrees, in [0, 180]. atan2(|u x v|, u . v) is
+/// accurate near 0 and 180 degrees, where acos of the normalized dot product
+/// loses half the digits. 0 when u or v is the zero vector (no NaN; the
+/// explicit test also avoids atan2(+0, -0) = 180).
+double angle_deg(const Point3& u, const Point3& v) {
+  const double y = norm(cross(u, v));
+  const double x = dot(u, v);
+  if (y == 0 && x == 0) return 0;
+  return std::atan2(y, x) * (180.0 / kPi);
+}
+
+/// The vector x from the origin vertex p0 to the orthocenter z of four weighted
+/// points p0 + e_i (e_0 = 0) with weights (squared radii) W_i. The orthosphere
+/// (paper, section 3) satisfies pi(p_i^, z^) = |z - p_i|^2 - W_i - Z^2 = 0 for
+/// all i. Subtracting the equation of p0 gives the linear system
+///   2 x . e_i = |e_i|^2 - W_i + W_0,   i = 1, 2, 3,
+/// solved by Cramer's rule with det = e_1 . (e_2 x e_3) (= 6 vol != 0). With all
+/// weights equal this is the circumcenter.
+Point3 orthocenter_offset(const Point3& e1, const Point3& e2, const Point3& e3, double det,
+                          double r1, double r2, double r3) {
+  const Point3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
+  const double s = 1.0 / (2.0 * det);
+  Point3 x;
+  for (int k = 0; k < 3; ++k) x[k] = (r1 * c23[k] + r2 * c31[k] + r3 * c12[k]) * s;
+  return x;
+}
+
+}  // namespace
+
+TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                       const std::array<double, 4>* w) {
+  TetQuality q;
+  const std::array<const Point3*, 4> p{{&a, &b, &c, &d}};
+  const Point3 e1 = sub(b, a), e2 = sub(c, a), e3 = sub(d, a);
+
+  // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
+  const double det = dot(e1, cross(e2, e3));
+  q.volume = det / 6.0;
+  const double abs_volume = std::fabs(q.volume);
+
+  // Edges in the order 01, 02, 03, 12, 13, 23; `opposite` is the other pair.
+  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  static constexpr int kOpposite[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+  q.shortest_edge = kInf;
+  q.longest_edge = 0;
+  for (int i = 0; i < 6; ++i) {
+    const double len = norm(sub(*p[kEdge[i][1]], *p[kEdge[i][0]]));
+    if (len < q.shortest_edge) q.shortest_edge = len;
+    if (len > q.longest_edge) q.longest_edge = len;
+  }
+  const double l = q.shortest_edge;
+
+  // Circumradius and orthoradius (section 3). A zero volume has no (finite)
+  // circumsphere: the radius is then +infinity.
+  double circumradius = kInf;
+  q.radius = kInf;
+  if (det != 0) {
+    const double r1 = dot(e1, e1), r2 = dot(e2, e2), r3 = dot(e3, e3);
+    circumradius = norm(orthocenter_offset(e1, e2, e3, det, r1, r2, r3));
+    q.radius = circumradius;
+    if (w != nullptr) {
+      const std::array<double, 4>& W = *w;
+      const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0],
+                                          r3 - W[3] + W[0]);
+      // Z^2 = |z - p_0|^2 - W_0, the weight of the orthosphere; may be < 0.
+      const double z2 = dot(x, x) - W[0];
+      q.radius = z2 > 0 ? std::sqrt(z2) : 0.0;
+    }
+  }
+
+  // rho = R / L and sigma = vol / L^3 (section 3). A zero shortest edge gives
+  // rho = +infinity and sigma = 0.
+  q.radius_edge = l > 0 ? q.radius / l : kInf;
+  q.normalized_volume = l > 0 ? q.volume / (l * l * l) : 0.0;
+
+  // Faces opposite vertex 0, 1, 2, 3, each with its corners in this order.
+  static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  double area = 0;
+  q.min_face_angle_deg = 180;
+  for (int f = 0; f < 4; ++f) {
+    const Point3& u = *p[kFace[f][0]];
+    const Point3& v = *p[kFace[f][1]];
+    const Point3& t = *p[kFace[f][2]];
+    area += 0.5 * norm(cross(sub(v, u), sub(t, u)));
+    for (int k = 0; k < 3; ++k) {
+      const Point3& apex = *p[kFace[f][k]];
+      const Point3& s1 = *p[kFace[f][(k + 1) % 3]];
+      const Point3& s2 = *p[kFace[f][(k + 2) % 3]];
+      const double angle = angle_deg(sub(s1, apex), sub(s2, apex));
+      q.face_angle_deg[3 * f + k] = angle;
+      if (angle < q.min_face_angle_deg) q.min_face_angle_deg = angle;
+    }
+  }
+
+  // Inradius r = 3 |vol| / (total face area); aspect ratio = circumradius / r
+  // (unweighted), +infinity when r = 0.
+  q.inradius = area > 0 ? 3.0 * abs_volume / area : 0.0;
+  q.aspect_ratio = q.inradius > 0 ? circumradius / q.inradius : kInf;
+
+  // Dihedral angle at edge ij: the angle between the projections of p_k - p_i
+  // and p_l - p_i on the plane orthogonal to e = p_j - p_i, i.e. between
+  // e x (p_k - p_i) and e x (p_l - p_i) (both rotated by the same quarter turn
+  // about e). In [0, 180] whatever the orientation; a flat tet gives 0 or 180.
+  q.min_dihedral_deg = 180;
+  q.max_dihedral_deg = 0;
+  for (int i = 0; i < 6; ++i) {
+    const Point3& pi = *p[kEdge[i][0]];
+    const Point3 e = sub(*p[kEdge[i][1]], pi);
+    const Point3 nk = cross(e, sub(*p[kOpposite[i][0]], pi));
+    const Point3 nl = cross(e, sub(*p[kOpposite[i][1]], pi));
+    const double angle = angle_deg(nk, nl);
+    q.dihedral_deg[i] = angle;
+    if (angle < q.min_dihedral_deg) q.min_dihedral_deg = angle;
+    if (angle > q.max_dihedral_deg) q.max_dihedral_deg = angle;
+  }
+  return q;
+}
+
+std::vector<TetQuality> mesh_quality(const TetMesh& mesh) {
+  const bool weighted = !mesh.weights.empty();
+  if (weighted && mesh.weights.size() != mesh.vertices.size())
+    throw std::invalid_argument("mesh_quality: " + std::to_string(mesh.weights.size()) +
+                                " weights for " + std::to_string(mesh.vertices.size()) +
+                                " vertices");
+  const long n = static_cast<long>(mesh.vertices.size());
+  std::vector<TetQuality> out;
+  out.reserve(mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    const std::array<int, 4>& tet = mesh.tets[t];
+    for (int v : tet)
+      if (v < 0 || v >= n)
+        throw std::out_of_range("mesh_quality: tet " + std::to_string(t) + " has vertex index " +
+                                std::to_string(v));
+    std::array<double, 4> w{};
+    if (weighted)
+      for (int k = 0; k < 4; ++k) w[k] = mesh.weights[tet[k]];
+    out.push_back(tet_quality(mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]],
+                              mesh.vertices[tet[3]], weighted ? &w : nullptr));
+  }
+  return out;
+}
+
+MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality) {
+  if (quality.size() != mesh.tets.size())
+    throw std::invalid_argument("mesh_stats: " + std::to_string(quality.size()) +
+                                " qualities for " + std::to_string(mesh.tets.size()) + " tets");
+  MeshStats s;
+  s.vertices = mesh.vertices.size();
+  s.tets = mesh.tets.size();
+  for (const TetQuality& q : quality) {
+    s.volume += q.volume;
+    if (!(q.volume > 0)) ++s.inverted;
+    if (q.min_dihedral_deg < s.min_dihedral_deg) s.min_dihedral_deg = q.min_dihedral_deg;
+    if (q.max_dihedral_deg > s.max_dihedral_deg) s.max_dihedral_deg = q.max_dihedral_deg;
+    if (q.min_face_angle_deg < s.min_face_angle_deg) s.min_face_angle_deg = q.min_face_angle_deg;
+    if (q.radius_edge > s.max_radius_edge) s.max_radius_edge = q.radius_edge;
+    if (q.aspect_ratio > s.max_aspect_ratio) s.max_aspect_ratio = q.aspect_ratio;
+
+    // Table 2, R/l: [0.6, 1.4], (1.4, 2.2], > 2.2 (NaN, never produced by
+    // tet_quality, would count as > 2.2).
+    const double rho = q.radius_edge;
+    if (rho < 0.6)
+      ++s.radius_edge_below;
+    else if (rho <= 1.4)
+      ++s.radius_edge_bins[0];
+    else if (rho <= 2.2)
+      ++s.radius_edge_bins[1];
+    else
+      ++s.radius_edge_bins[2];
+
+    // Table 2, smallest dihedral angle: [0, 3), [3, 5), [5, 10) degrees.
+    const double md = q.min_dihedral_deg;
+    if (md < 3)
+      ++s.dihedral_bins[0];
+    else if (md < 5)
+      ++s.dihedral_bins[1];
+    else if (md < 10)
+      ++s.dihedral_bins[2];
+
+    // Section 6: a sliver has R/l <= 2.2 and a dihedral angle below 3 degrees.
+    if (rho <= 2.2 && md < 3) ++s.slivers;
+
+    // Figure 3: distributions of the smallest dihedral and face angles.
+    s.min_dihedral_histogram[histogram_bin(md, s.min_dihedral_histogram.size())]++;
+    s.min_face_angle_histogram[histogram_bin(q.min_face_angle_deg,
+                                             s.min_face_angle_histogram.size())]++;
+  }
+  return s;
+}
+
+std::size_t histogram_bin(double angle_deg, std::size_t bins) {
+  if (!(angle_deg > 0)) return 0;  // also NaN
+  const double k = std::floor(angle_deg);
+  if (k >= static_cast<double>(bins)) return bins - 1;
+  return static_cast<std::size_t>(k);
+}
+
+}  // namespace wqmesh

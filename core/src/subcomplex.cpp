@@ -1,0 +1,477 @@
+// wqmesh: subsegments and subfacets (paper, section 4): their encroachment,
+// SPLITE, SPLITF and ENCROACH (sections 4.2 and 4.3), the protecting balls, and
+// the insertion of a vertex into V.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mesher_state.h"
+
+namespace wqmesh::mesher {
+
+Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressCallback& progress)
+    : dom_(domain), opt_(options), progress_(progress) {
+  facet_dt_.resize(domain.p.facets.size());
+  vertex_sectors_.assign(domain.p.vertices.size(), {});
+}
+
+// ---- bookkeeping -----------------------------------------------------------------
+
+void Mesher::add_segment(const Subsegment& s) {
+  const std::uint64_t k = edge_key(s.a, s.b);
+  segs_[k] = s;
+  vertex_segs_[s.a].push_back(k);
+  vertex_segs_[s.b].push_back(k);
+  seg_queue_.push_back(k);
+}
+
+void Mesher::facets_of(int v, std::vector<int>& out) const {
+  out.clear();
+  const MVertex& m = verts_[v];
+  switch (m.on) {
+    case On::vertex: out = dom_.vertex_facets[m.element]; break;
+    case On::edge:
+      out.push_back(dom_.p.edges[m.element].facets[0]);
+      out.push_back(dom_.p.edges[m.element].facets[1]);
+      break;
+    case On::facet: out.push_back(m.element); break;
+    case On::free: break;
+  }
+}
+
+bool Mesher::on_one_edge(int v, int e) const {
+  const MVertex& m = verts_[v];
+  if (m.on == On::edge) return m.element == e;
+  return m.on == On::vertex && (dom_.p.edges[e].a == m.element || dom_.p.edges[e].b == m.element);
+}
+
+bool Mesher::lies_in_facet(int f, const Tri& t) const {
+  // A triangle of the planar Delaunay triangulation is a subfacet when it lies
+  // in the facet. Three vertices on one edge of P are collinear but for the
+  // rounding of the points inserted on the edge: their sliver is no subfacet.
+  const MVertex& m = verts_[t[0]];
+  if (m.on == On::edge) {
+    if (on_one_edge(t[1], m.element) && on_one_edge(t[2], m.element)) return false;
+  } else if (m.on == On::vertex) {
+    for (int e : dom_.vertex_edges[m.element])
+      if (on_one_edge(t[1], e) && on_one_edge(t[2], e)) return false;
+  }
+  const Point3 c = mul(add(add(tri_.point(t[0]), tri_.point(t[1])), tri_.point(t[2])), 1.0 / 3);
+  return dom_.inside_facet(f, c);
+}
+
+void Mesher::subfacets_at(int f, int v, std::vector<Tri>& out) const {
+  facet_dt_[f].incident_triangles(v, out);
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }),
+            out.end());
+}
+
+bool Mesher::is_subfacet(int f, const Tri& t) const {
+  std::vector<Tri> around;
+  subfacets_at(f, t[0], around);
+  const Tri st = sorted(t);
+  for (const Tri& u : around)
+    if (sorted(u) == st) return true;
+  return false;
+}
+
+std::vector<Subfacet> Mesher::subfacets() const {
+  std::vector<Subfacet> out;
+  for (int f = 0; f < static_cast<int>(facet_dt_.size()); ++f)
+    for (const Tri& t : facet_dt_[f].triangles())
+      if (lies_in_facet(f, t)) out.push_back({f, t});
+  return out;
+}
+
+int Mesher::insert(const Insertion& ins) {
+  const int before = tri_.number_of_vertices();
+  const int id = tri_.insert(ins.p, 0, ins.hint);
+  if (id < before) return -1;  // hidden or an existing vertex: nothing inserted
+  MVertex m;
+  m.on = ins.on;
+  m.element = ins.element;
+  m.sector = ins.sector;
+  m.angle = ins.angle;
+  m.ball = ins.ball;
+  verts_.push_back(m);
+  vertex_segs_.emplace_back();
+  if (ins.has_segment) {
+    const auto it = segs_.find(ins.split_segment);
+    if (it != segs_.end()) {
+      const Subsegment old = it->second;
+      segs_.erase(it);
+      for (int end : {old.a, old.b}) {
+        auto& list = vertex_segs_[end];
+        list.erase(std::remove(list.begin(), list.end(), ins.split_segment), list.end());
+      }
+      Subsegment left = old, right = old;
+      left.b = id;
+      right.a = id;
+      left.tb = right.ta = ins.angle;
+      add_segment(left);
+      add_segment(right);
+    }
+  }
+  std::vector<int> fs;
+  facets_of(id, fs);
+  for (int f : fs) {
+    const auto q = dom_.to2d(f, ins.p);
+    facet_dt_[f].insert(q[0], q[1], id);
+  }
+  if (phase_ != Phase::initialize) ++inserted_;
+  enqueue_around(id);
+  if (verts_.size() >= opt_.max_vertices && stop_reason_.empty()) stop_reason_ = "limit";
+  return id;
+}
+
+std::vector<std::uint64_t> Mesher::shield_keys(int sector) const {
+  // The shield subsegments of a sector: walk its arc from the point at angle
+  // 0 through the subsegments that belong to the sector.
+  std::vector<std::uint64_t> keys;
+  const Sector& s = sectors_[sector];
+  (void)s;
+  for (const auto& [k, g] : segs_)
+    if (g.sector == sector) keys.push_back(k);
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// ---- encroachment (section 4) ------------------------------------------------------
+
+// A point encroaches a subsegment when it lies on or inside its diametric ball
+// (stricter than usual), and a subfacet when it lies strictly inside.
+namespace {
+bool in_diametric_ball(const Point3& x, const Point3& a, const Point3& b) {
+  const Point3 m = midpoint(a, b);
+  return dist2(x, m) <= 0.25 * dist2(a, b);
+}
+}  // namespace
+
+bool Mesher::segment_encroached(const Subsegment& e) const {
+  if (e.in_ball) return false;
+  if (!tri_.is_edge(e.a, e.b)) return true;  // missing: a vertex lies in every circumball
+  const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
+  // The points on the sphere of a vertex ball do not encroach its shield
+  // subsegments (a choice: at a sharp edge of dihedral angle below 45 degrees
+  // the first shield subsegments of its two facets would otherwise encroach
+  // each other after every SOS split, forever). What the shields are for,
+  // the shield subfacets in Del V, rule 2 checks directly.
+  const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
+  std::vector<Tet> cells;
+  tri_.incident_cells(e.a, cells);
+  for (const Tet& c : cells) {
+    if (std::find(c.begin(), c.end(), e.b) == c.end()) continue;
+    for (int x : c)
+      if (x != kInfinite && x != e.a && x != e.b && verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b))
+        return true;
+  }
+  return false;
+}
+
+bool Mesher::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }
+
+bool Mesher::subfacet_encroached(const Subfacet& h) const {
+  Tet c1, c2;
+  if (!tri_.facet_cells(h.v[0], h.v[1], h.v[2], c1, c2)) return true;
+  // If a vertex lies inside the diametric ball of a Delaunay triangle, the
+  // vertex opposite it in one of its two cells does (the spheres through the
+  // triangle form a pencil, the power of a point is affine along it).
+  double r2;
+  const Point3 cc = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
+  for (const Tet* c : {&c1, &c2})
+    for (int x : *c)
+      if (x != kInfinite && x != h.v[0] && x != h.v[1] && x != h.v[2] && dist2(tri_.point(x), cc) < r2)
+        return true;
+  return false;
+}
+
+void Mesher::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
+                                 std::vector<Subfacet>& facet_out) const {
+  // When no subsegment (subfacet) is encroached by a vertex, a point that
+  // encroaches one conflicts with a cell incident to it: along the pencil of
+  // spheres through its vertices the power of the point is affine, negative at
+  // the diametric ball, whose center lies in the dual Voronoi face (edge), so
+  // negative at one of its vertices, the circumcenters of the incident cells.
+  seg_out.clear();
+  facet_out.clear();
+  std::vector<Tet> cells;
+  tri_.conflict_cells(c, 0, hint, cells);
+  std::vector<std::uint64_t> edges;
+  std::vector<Tri> tris;
+  for (const Tet& t : cells) {
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (t[i] != kInfinite && t[j] != kInfinite) edges.push_back(edge_key(t[i], t[j]));
+    for (int k = 0; k < 4; ++k) {
+      Tri f{{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}};
+      if (std::find(f.begin(), f.end(), kInfinite) == f.end()) tris.push_back(sorted(f));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (std::uint64_t k : edges) {
+    const auto it = segs_.find(k);
+    if (it == segs_.end() || it->second.in_ball) continue;
+    if (in_diametric_ball(c, tri_.point(it->second.a), tri_.point(it->second.b))) seg_out.push_back(k);
+  }
+  std::sort(tris.begin(), tris.end());
+  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  std::vector<int> f0, f1, f2;
+  for (const Tri& t : tris) {
+    facets_of(t[0], f0);
+    if (f0.empty()) continue;
+    facets_of(t[1], f1);
+    facets_of(t[2], f2);
+    for (int f : f0) {
+      if (std::find(f1.begin(), f1.end(), f) == f1.end() || std::find(f2.begin(), f2.end(), f) == f2.end())
+        continue;
+      if (!is_subfacet(f, t)) continue;
+      double r2;
+      const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
+      if (dist2(c, cc) < r2) facet_out.push_back({f, t});
+    }
+  }
+}
+
+// ---- SPLITE and SPLITF (section 4.2) ---------------------------------------------
+
+Insertion Mesher::splite(const Subsegment& e) const {
+  Insertion ins;
+  ins.split_segment = edge_key(e.a, e.b);
+  ins.has_segment = true;
+  ins.hint = e.a;
+  if (e.sector >= 0) {
+    // SOS: the midpoint of the arc of the vertex ball between a and b.
+    const Sector& s = sectors_[e.sector];
+    ins.angle = 0.5 * (e.ta + e.tb);
+    ins.p = s.at(ins.angle);
+    ins.on = On::facet;
+    ins.element = s.facet;
+    ins.sector = e.sector;
+    ins.ball = s.u;
+  } else {
+    ins.p = midpoint(tri_.point(e.a), tri_.point(e.b));
+    ins.on = On::edge;
+    ins.element = e.edge;
+  }
+  return ins;
+}
+
+Insertion Mesher::splitf(const Subfacet& h) {
+  double r2;
+  const Point3 c = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
+  // Vertex balls are kept empty (section 4.1): a circumcenter inside the ball
+  // of a sharp vertex u of the facet is rejected and the shield subsegment of
+  // its sector is split instead (a choice: the paper does not say which).
+  for (const auto& loop : dom_.p.facets[h.facet].loops)
+    for (int u : loop) {
+      const double r = dom_.ball_radius[u];
+      if (r <= 0 || dist2(c, dom_.p.vertices[u]) >= r * r) continue;
+      // The shield subsegment of this facet at u whose arc is nearest, in
+      // angle, to the direction of c (c may fall outside every sector when
+      // the triangle is not a fan triangle of u).
+      const Subsegment* pick = nullptr;
+      double best = HUGE_VAL;
+      for (int sid : vertex_sectors_[u]) {
+        const Sector& s = sectors_[sid];
+        if (s.facet != h.facet) continue;
+        const Point3 d = sub(c, s.center);
+        double t = std::atan2(dot(d, s.e2), dot(d, s.e1));
+        if (t < 0) t += 2 * 3.14159265358979323846;
+        for (const std::uint64_t k : shield_keys(sid)) {
+          const Subsegment& g = segs_.at(k);
+          const double gap = t < g.ta ? g.ta - t : t > g.tb ? std::min(t - g.tb, 2 * 3.14159265358979323846 - t + g.ta) : 0;
+          if (gap < best) {
+            best = gap;
+            pick = &g;
+          }
+        }
+      }
+      if (pick) return splite(*pick);
+    }
+  // SPLITF (ii): reject c if it encroaches a subsegment, preferring those in
+  // the boundary of the facet or on it (shield subsegments).
+  std::vector<std::uint64_t> segs;
+  std::vector<Subfacet> facets;
+  encroached_by_point(c, h.v[0], segs, facets);
+  if (!segs.empty()) {
+    std::uint64_t pick = segs.front();
+    for (std::uint64_t k : segs) {
+      const Subsegment& g = segs_.at(k);
+      const int owner_facet = g.sector >= 0 ? sectors_[g.sector].facet : -1;
+      const bool on_boundary = g.edge >= 0 && (dom_.p.edges[g.edge].facets[0] == h.facet ||
+                                               dom_.p.edges[g.edge].facets[1] == h.facet);
+      if (owner_facet == h.facet || on_boundary) {
+        pick = k;
+        break;
+      }
+    }
+    return splite(segs_.at(pick));
+  }
+  Insertion ins;
+  ins.p = c;
+  ins.on = On::facet;
+  ins.element = h.facet;
+  ins.hint = h.v[0];
+  return ins;
+}
+
+// ---- ENCROACH (section 4.3) --------------------------------------------------------
+
+Insertion Mesher::encroach(const Point3& c, int hint) {
+  std::vector<std::uint64_t> segs;
+  std::vector<Subfacet> facets;
+  encroached_by_point(c, hint, segs, facets);
+  if (!segs.empty()) return splite(segs_.at(*std::min_element(segs.begin(), segs.end())));
+  if (!facets.empty()) {
+    // "One such subfacet h contains the orthogonal projection of c." When
+    // rounding leaves none containing it, the one whose plane is nearest to c
+    // is taken (a choice the paper leaves open).
+    const Subfacet* pick = nullptr;
+    double best = std::numeric_limits<double>::infinity();
+    for (const Subfacet& h : facets) {
+      const Point3 &a = tri_.point(h.v[0]), &b = tri_.point(h.v[1]), &d = tri_.point(h.v[2]);
+      const Point3 n = cross(sub(b, a), sub(d, a));
+      const double nn = dot(n, n);
+      if (nn == 0) continue;
+      const double height = dot(sub(c, a), n) / std::sqrt(nn);
+      const Point3 q = sub(c, mul(n, dot(sub(c, a), n) / nn));
+      // barycentric signs of q in abd
+      const double s0 = dot(cross(sub(b, a), sub(q, a)), n), s1 = dot(cross(sub(d, b), sub(q, b)), n),
+                   s2 = dot(cross(sub(a, d), sub(q, d)), n);
+      const bool contains = s0 >= 0 && s1 >= 0 && s2 >= 0;
+      const double score = contains ? -1 : std::fabs(height);
+      if (score < best) {
+        best = score;
+        pick = &h;
+      }
+    }
+    if (pick) return splitf(*pick);
+  }
+  Insertion ins;
+  ins.p = c;
+  ins.on = On::free;
+  ins.hint = hint;
+  return ins;
+}
+
+// ---- protecting balls ---------------------------------------------------------------
+
+void Mesher::make_protecting_balls() {
+  balls_.clear();
+  for (int u = 0; u < static_cast<int>(dom_.p.vertices.size()); ++u)
+    if (dom_.ball_radius[u] > 0) balls_.push_back({dom_.p.vertices[u], dom_.ball_radius[u], true});
+  // At the end of CONFORM, the diametric balls of sharp subsegments doubled.
+  std::vector<std::uint64_t> keys;
+  for (const auto& [k, s] : segs_)
+    if (s.sharp) keys.push_back(k);
+  std::sort(keys.begin(), keys.end());
+  for (std::uint64_t k : keys) {
+    const Subsegment& s = segs_.at(k);
+    const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);
+    balls_.push_back({midpoint(a, b), std::sqrt(dist2(a, b)), false});
+  }
+  protecting_ = true;
+  index_balls();
+}
+
+namespace {
+std::uint64_t cell_key(long long i, long long j, long long k) {
+  const auto m = [](long long x) { return std::uint64_t(x + (1 << 20)) & 0x1FFFFF; };
+  return (m(i) << 42) | (m(j) << 21) | m(k);
+}
+}  // namespace
+
+void Mesher::index_balls() {
+  ball_grid_.clear();
+  const Point3 ext = sub(dom_.box.hi, dom_.box.lo);
+  const double diag = std::sqrt(dot(ext, ext));
+  double sum = 0;
+  for (const ProtectingBall& b : balls_) sum += 4 * b.radius;
+  ball_cell_ = std::max(diag / 256, balls_.empty() ? diag : sum / balls_.size());
+  for (int i = 0; i < static_cast<int>(balls_.size()); ++i) {
+    const ProtectingBall& b = balls_[i];
+    const double r = 2 * b.radius;
+    long long lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = static_cast<long long>(std::floor((b.center[d] - r - dom_.box.lo[d]) / ball_cell_));
+      hi[d] = static_cast<long long>(std::floor((b.center[d] + r - dom_.box.lo[d]) / ball_cell_));
+    }
+    for (long long x = lo[0]; x <= hi[0]; ++x)
+      for (long long y = lo[1]; y <= hi[1]; ++y)
+        for (long long z = lo[2]; z <= hi[2]; ++z) ball_grid_[cell_key(x, y, z)].push_back(i);
+  }
+}
+
+template <class F>
+void Mesher::for_balls_near(const Point3& x, double reach, F&& f) const {
+  long long lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = static_cast<long long>(std::floor((x[d] - reach - dom_.box.lo[d]) / ball_cell_));
+    hi[d] = static_cast<long long>(std::floor((x[d] + reach - dom_.box.lo[d]) / ball_cell_));
+  }
+  const double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
+  if (cells > double(balls_.size())) {  // a long reach: look at every ball
+    for (const ProtectingBall& b : balls_)
+      if (f(b)) return;
+    return;
+  }
+  for (long long i = lo[0]; i <= hi[0]; ++i)
+    for (long long j = lo[1]; j <= hi[1]; ++j)
+      for (long long k = lo[2]; k <= hi[2]; ++k) {
+        const auto it = ball_grid_.find(cell_key(i, j, k));
+        if (it == ball_grid_.end()) continue;
+        for (int b : it->second)
+          if (f(balls_[b])) return;
+      }
+}
+
+bool Mesher::in_protecting_ball(const Point3& x) const {
+  bool hit = false;
+  for_balls_near(x, 0, [&](const ProtectingBall& b) {
+    hit = dist2(x, b.center) <= b.radius * b.radius;
+    return hit;
+  });
+  return hit;
+}
+
+bool Mesher::encroaches_expanded_ball(const Point3& v, double w) const {
+  bool hit = false;
+  for_balls_near(v, std::sqrt(w), [&](const ProtectingBall& b) {
+    hit = dist2(v, b.center) <= 4 * b.radius * b.radius + w;
+    return hit;
+  });
+  return hit;
+}
+
+bool Mesher::guarded(const Subfacet& h) const {
+  // A subfacet is guarded when its diametric ball lies inside a protecting ball.
+  double r2;
+  const Point3 c = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
+  const double r = std::sqrt(r2);
+  bool hit = false;
+  for_balls_near(c, 0, [&](const ProtectingBall& b) {
+    hit = std::sqrt(dist2(c, b.center)) + r <= b.radius;
+    return hit;
+  });
+  return hit;
+}
+
+double Mesher::nearest_neighbour(int v) const {
+  std::vector<int> adj;
+  tri_.adjacent_vertices(v, adj);
+  double best = std::numeric_limits<double>::infinity();
+  for (int u : adj) best = std::min(best, dist2(tri_.point(u), tri_.point(v)));
+  return std::sqrt(best);
+}
+
+bool Mesher::conforms() const {
+  for (const auto& [k, s] : segs_)
+    if (!tri_.is_edge(s.a, s.b)) return false;
+  for (const Subfacet& h : subfacets())
+    if (!subfacet_present(h)) return false;
+  return true;
+}
+
+}  // namespace wqmesh::mesher

@@ -1,0 +1,273 @@
+// wqmesh: the only translation unit that instantiates CGAL's triangulations
+// (see triangulation.h for the contracts).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "triangulation.h"
+
+#include <stdexcept>
+#include <unordered_map>
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/iterator.h>
+
+namespace wqmesh {
+
+namespace {
+
+// Kernel: exact predicates, inexact constructions.
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// Weighted Delaunay triangulation (paper, section 3). Vertex info = our id.
+// Hidden points are discarded: the weights of WQMESH (at most N(v)^2/9) never
+// hide a vertex, and a hidden insertion is reported to the caller.
+using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<int, K,
+                                                         CGAL::Regular_triangulation_vertex_base_3<K>>;
+using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>,
+                                                    CGAL::Discard_hidden_points>;
+using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
+using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
+using WPoint = K::Weighted_point_3;
+using BPoint = K::Point_3;
+
+// Planar Delaunay triangulation of one facet's vertices. Vertex info = our id.
+using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Tds2 = CGAL::Triangulation_data_structure_2<Vb2>;
+using Dt2 = CGAL::Delaunay_triangulation_2<K, Tds2>;
+
+}  // namespace
+
+// ---- RegularTriangulation ----------------------------------------------------
+
+struct RegularTriangulation::Impl {
+  Rt rt;
+  std::vector<Rt::Vertex_handle> handles;  // by id
+  std::vector<Point3> points;
+  std::vector<double> weights;
+
+  int id_of(Rt::Vertex_handle v) const { return rt.is_infinite(v) ? kInfinite : v->info(); }
+
+  Tet tet_of(Rt::Cell_handle c) const {
+    return {{id_of(c->vertex(0)), id_of(c->vertex(1)), id_of(c->vertex(2)), id_of(c->vertex(3))}};
+  }
+
+  Rt::Cell_handle start_cell(int hint) const {
+    if (hint >= 0 && hint < static_cast<int>(handles.size()) && handles[hint] != Rt::Vertex_handle())
+      return handles[hint]->cell();
+    return Rt::Cell_handle();
+  }
+
+  Rt::Vertex_handle handle(int v) const {
+    if (v < 0 || v >= static_cast<int>(handles.size()))
+      throw std::out_of_range("RegularTriangulation: no vertex " + std::to_string(v));
+    return handles[v];
+  }
+
+  // Inserts a weighted point; returns the CGAL handle (null when hidden), or
+  // the existing vertex at the same position. Throws if the insertion hid
+  // an existing vertex (outside the contract of WQMESH's weights).
+  Rt::Vertex_handle insert_point(const Point3& p, double w, Rt::Cell_handle start, bool& existed) {
+    const WPoint wp(BPoint(p[0], p[1], p[2]), w);
+    Rt::Locate_type lt;
+    int li = 0, lj = 0;
+    const Rt::Cell_handle c = rt.locate(wp, lt, li, lj, start);
+    existed = false;
+    if (lt == Rt::VERTEX && rt.dimension() >= 0) {
+      existed = true;
+      return c->vertex(li);
+    }
+    const std::size_t before = rt.number_of_vertices();
+    const Rt::Vertex_handle v = rt.insert(wp, lt, c, li, lj);
+    if (v == Rt::Vertex_handle()) return v;
+    if (rt.number_of_vertices() != before + 1)
+      throw std::logic_error("RegularTriangulation: a weighted insertion hid an existing vertex");
+    return v;
+  }
+};
+
+RegularTriangulation::RegularTriangulation() : impl_(new Impl) {}
+RegularTriangulation::~RegularTriangulation() = default;
+
+int RegularTriangulation::insert(const Point3& p, double w, int hint) {
+  bool existed = false;
+  const Rt::Vertex_handle v = impl_->insert_point(p, w, impl_->start_cell(hint), existed);
+  if (v == Rt::Vertex_handle()) return -1;
+  if (existed) return v->info();
+  const int id = static_cast<int>(impl_->handles.size());
+  v->info() = id;
+  impl_->handles.push_back(v);
+  impl_->points.push_back(p);
+  impl_->weights.push_back(w);
+  return id;
+}
+
+bool RegularTriangulation::set_weight(int v, double w) {
+  const Rt::Vertex_handle old = impl_->handle(v);
+  if (impl_->weights[v] == w) return true;
+  const Rt::Cell_handle near = old->cell();
+  Rt::Vertex_handle neighbour;
+  for (int i = 0; i < 4; ++i)
+    if (near->vertex(i) != old && !impl_->rt.is_infinite(near->vertex(i))) neighbour = near->vertex(i);
+  impl_->rt.remove(old);
+  const Rt::Cell_handle start = neighbour != Rt::Vertex_handle() ? neighbour->cell() : Rt::Cell_handle();
+  bool existed = false;
+  Rt::Vertex_handle nv = impl_->insert_point(impl_->points[v], w, start, existed);
+  bool ok = true;
+  if (nv == Rt::Vertex_handle()) {  // hidden: put the old weight back
+    ok = false;
+    nv = impl_->insert_point(impl_->points[v], impl_->weights[v], start, existed);
+    if (nv == Rt::Vertex_handle())
+      throw std::logic_error("RegularTriangulation: cannot restore vertex " + std::to_string(v));
+  } else {
+    impl_->weights[v] = w;
+  }
+  nv->info() = v;
+  impl_->handles[v] = nv;
+  return ok;
+}
+
+const Point3& RegularTriangulation::point(int v) const { return impl_->points.at(v); }
+double RegularTriangulation::weight(int v) const { return impl_->weights.at(v); }
+int RegularTriangulation::number_of_vertices() const { return static_cast<int>(impl_->handles.size()); }
+std::size_t RegularTriangulation::number_of_finite_cells() const {
+  return impl_->rt.number_of_finite_cells();
+}
+
+bool RegularTriangulation::is_edge(int a, int b) const {
+  Rt::Cell_handle c;
+  int i, j;
+  return impl_->rt.is_edge(impl_->handle(a), impl_->handle(b), c, i, j);
+}
+
+bool RegularTriangulation::is_facet(int a, int b, int c) const {
+  Rt::Cell_handle cell;
+  int i, j, k;
+  return impl_->rt.is_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k);
+}
+
+bool RegularTriangulation::is_cell(const Tet& t) const {
+  for (int v : t)
+    if (v < 0) return false;
+  Rt::Cell_handle c;
+  int i, j, k, l;
+  return impl_->rt.is_cell(impl_->handle(t[0]), impl_->handle(t[1]), impl_->handle(t[2]),
+                           impl_->handle(t[3]), c, i, j, k, l);
+}
+
+std::vector<Tet> RegularTriangulation::finite_cells() const {
+  std::vector<Tet> out;
+  out.reserve(impl_->rt.number_of_finite_cells());
+  for (auto c = impl_->rt.finite_cells_begin(); c != impl_->rt.finite_cells_end(); ++c)
+    out.push_back(impl_->tet_of(c));
+  return out;
+}
+
+void RegularTriangulation::incident_cells(int v, std::vector<Tet>& out) const {
+  out.clear();
+  std::vector<Rt::Cell_handle> cells;
+  impl_->rt.incident_cells(impl_->handle(v), std::back_inserter(cells));
+  for (const Rt::Cell_handle& c : cells) out.push_back(impl_->tet_of(c));
+}
+
+void RegularTriangulation::adjacent_vertices(int v, std::vector<int>& out) const {
+  out.clear();
+  std::vector<Rt::Vertex_handle> vs;
+  impl_->rt.finite_adjacent_vertices(impl_->handle(v), std::back_inserter(vs));
+  for (const Rt::Vertex_handle& u : vs) out.push_back(u->info());
+}
+
+bool RegularTriangulation::facet_cells(int a, int b, int c, Tet& first, Tet& second) const {
+  Rt::Cell_handle cell;
+  int i, j, k;
+  if (!impl_->rt.is_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k))
+    return false;
+  const int l = 6 - i - j - k;
+  first = impl_->tet_of(cell);
+  second = impl_->tet_of(cell->neighbor(l));
+  return true;
+}
+
+void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint,
+                                          std::vector<Tet>& out) const {
+  out.clear();
+  if (impl_->rt.dimension() < 3) return;
+  const WPoint wp(BPoint(p[0], p[1], p[2]), w);
+  Rt::Locate_type lt;
+  int li = 0, lj = 0;
+  const Rt::Cell_handle c = impl_->rt.locate(wp, lt, li, lj, impl_->start_cell(hint));
+  if (lt == Rt::VERTEX) return;
+  std::vector<Rt::Cell_handle> cells;
+  impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
+  for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
+}
+
+int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
+  const Rt::Vertex_handle v =
+      impl_->rt.nearest_power_vertex(BPoint(p[0], p[1], p[2]), impl_->start_cell(hint));
+  return v == Rt::Vertex_handle() || impl_->rt.is_infinite(v) ? -1 : v->info();
+}
+
+RegularTriangulation::CellGraph RegularTriangulation::cell_graph() const {
+  CellGraph g;
+  std::unordered_map<Rt::Cell_handle, int> index;
+  index.reserve(impl_->rt.number_of_cells());
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    index.emplace(c, static_cast<int>(g.cells.size()));
+    g.cells.push_back(impl_->tet_of(c));
+  }
+  g.neighbor.resize(g.cells.size());
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    const int i = index[c];
+    for (int k = 0; k < 4; ++k) g.neighbor[i][k] = index[c->neighbor(k)];
+  }
+  return g;
+}
+
+// ---- PlanarDelaunay ----------------------------------------------------------
+
+struct PlanarDelaunay::Impl {
+  Dt2 dt;
+  std::unordered_map<int, Dt2::Vertex_handle> by_id;
+};
+
+PlanarDelaunay::PlanarDelaunay() : impl_(new Impl) {}
+PlanarDelaunay::~PlanarDelaunay() = default;
+PlanarDelaunay::PlanarDelaunay(PlanarDelaunay&&) noexcept = default;
+PlanarDelaunay& PlanarDelaunay::operator=(PlanarDelaunay&&) noexcept = default;
+
+int PlanarDelaunay::insert(double x, double y, int id) {
+  const K::Point_2 p(x, y);
+  Dt2::Locate_type lt;
+  int li = 0;
+  const Dt2::Face_handle f = impl_->dt.locate(p, lt, li);
+  if (lt == Dt2::VERTEX) return f->vertex(li)->info();
+  const Dt2::Vertex_handle v = impl_->dt.insert(p, lt, f, li);
+  v->info() = id;
+  impl_->by_id[id] = v;
+  return id;
+}
+
+std::vector<std::array<int, 3>> PlanarDelaunay::triangles() const {
+  std::vector<std::array<int, 3>> out;
+  for (auto f = impl_->dt.finite_faces_begin(); f != impl_->dt.finite_faces_end(); ++f)
+    out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+  return out;
+}
+
+void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out) const {
+  out.clear();
+  const auto it = impl_->by_id.find(id);
+  if (it == impl_->by_id.end() || impl_->dt.dimension() < 2) return;
+  auto f = impl_->dt.incident_faces(it->second), done = f;
+  if (f == nullptr) return;
+  do {
+    if (!impl_->dt.is_infinite(f))
+      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+  } while (++f != done);
+}
+
+std::size_t PlanarDelaunay::size() const { return impl_->dt.number_of_vertices(); }
+
+}  // namespace wqmesh

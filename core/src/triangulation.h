@@ -1,0 +1,110 @@
+// wqmesh: a thin interface in front of CGAL's Regular_triangulation_3 (the
+// weighted Delaunay triangulation of the paper, section 3) and of a planar
+// Delaunay triangulation per facet (the subfacets of section 4). Private.
+//
+// This header has no CGAL in it: triangulation.cpp is the only translation
+// unit that instantiates CGAL's triangulations, so the mesher's phases compile
+// fast. Vertices are named by dense integer ids (0, 1, 2, ... in insertion
+// order); cells by the ids of their four vertices, positively oriented.
+// With every weight 0 the triangulation is Del V; REFINE keeps all weights 0
+// (paper, rule 7: "we always maintain an unweighted Delaunay triangulation")
+// and PUMP sets them.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "wqmesh/types.h"
+
+namespace wqmesh {
+
+/// Four vertex ids, positively oriented (orient3d > 0). The infinite vertex
+/// has id kInfinite.
+using Tet = std::array<int, 4>;
+constexpr int kInfinite = -1;
+
+class RegularTriangulation {
+ public:
+  RegularTriangulation();
+  ~RegularTriangulation();
+  RegularTriangulation(const RegularTriangulation&) = delete;
+  RegularTriangulation& operator=(const RegularTriangulation&) = delete;
+
+  /// Inserts p with weight w (a squared radius). `hint` is a vertex near p
+  /// (or -1) where the point location starts. Returns the new vertex id, or
+  /// the id of the existing vertex at exactly p (nothing changes then), or -1
+  /// when p would be hidden by the weights around it (nothing changes).
+  int insert(const Point3& p, double w = 0, int hint = -1);
+
+  /// Changes the weight of vertex v (removal and reinsertion; the id stays).
+  /// Returns false, and keeps the old weight, when the new weighted point
+  /// would be hidden.
+  bool set_weight(int v, double w);
+
+  const Point3& point(int v) const;
+  double weight(int v) const;
+  int number_of_vertices() const;  ///< ids handed out so far
+  std::size_t number_of_finite_cells() const;
+
+  bool is_edge(int a, int b) const;
+  bool is_facet(int a, int b, int c) const;
+  bool is_cell(const Tet& t) const;
+
+  /// Every finite cell, positively oriented.
+  std::vector<Tet> finite_cells() const;
+  /// The cells incident to v, finite or not (kInfinite in infinite ones).
+  void incident_cells(int v, std::vector<Tet>& out) const;
+  /// The finite vertices adjacent to v.
+  void adjacent_vertices(int v, std::vector<int>& out) const;
+  /// The two cells sharing triangle abc (either may hold kInfinite).
+  /// Returns false when abc is not a facet of the triangulation.
+  bool facet_cells(int a, int b, int c, Tet& first, Tet& second) const;
+  /// The cells, finite or not, whose orthospheres the weighted point (p, w)
+  /// conflicts with (negative power distance): the cells an insertion of p
+  /// would destroy. Empty if p coincides with a vertex.
+  void conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out) const;
+  /// The vertex nearest to p (power distance with the current weights).
+  int nearest_vertex(const Point3& p, int hint = -1) const;
+
+  /// All cells, infinite ones included, with their adjacency:
+  /// neighbor[i][k] is the index in `cells` of the cell opposite cells[i][k].
+  struct CellGraph {
+    std::vector<Tet> cells;
+    std::vector<std::array<int, 4>> neighbor;
+  };
+  CellGraph cell_graph() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The Delaunay triangulation of the mesh vertices lying on one facet, in 2D
+/// coordinates of the facet's plane (paper, section 4: its triangles inside the
+/// facet are the subfacets). Ids are the caller's (the 3D vertex ids).
+class PlanarDelaunay {
+ public:
+  PlanarDelaunay();
+  ~PlanarDelaunay();
+  PlanarDelaunay(const PlanarDelaunay&) = delete;
+  PlanarDelaunay& operator=(const PlanarDelaunay&) = delete;
+  PlanarDelaunay(PlanarDelaunay&&) noexcept;
+  PlanarDelaunay& operator=(PlanarDelaunay&&) noexcept;
+
+  /// Inserts the point (x, y) with the caller's id. A point equal to an
+  /// existing one is ignored and that one's id returned.
+  int insert(double x, double y, int id);
+  /// Every finite triangle, counter-clockwise, as caller ids.
+  std::vector<std::array<int, 3>> triangles() const;
+  /// The finite triangles incident to the point with caller id `id`.
+  void incident_triangles(int id, std::vector<std::array<int, 3>>& out) const;
+  std::size_t size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace wqmesh

@@ -1,0 +1,502 @@
+// Tests of the mesher (WQMESH, paper section 4.3): invariants checked on the
+// output mesh itself (orientation, volume, conformity to the input, the weight
+// bound, the regular triangulation), the classes of tets, PUMP, the options,
+// and the rules on tiny inputs where the right point is known by hand.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <unordered_set>
+
+#include "mesher_state.h"
+#include "wqmesh/analysis.h"
+#include "wqmesh/input.h"
+#include "wqmesh/mesher.h"
+#include "wqmesh/report.h"
+
+namespace wqmesh {
+namespace {
+
+namespace fs = std::filesystem;
+using mesher::cross;
+using mesher::dot;
+using mesher::sub;
+
+struct Input {
+  PLC plc;
+  Analysis analysis;
+};
+
+Input load(const std::string& path, double box_margin = 0.5) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string bytes = s.str();
+  AnalysisOptions ao;
+  ao.box_margin = box_margin;
+  const CheckResult r = check_polyhedron(bytes.data(), bytes.size(), {}, ao);
+  EXPECT_TRUE(r.valid) << path << ": " << r.error;
+  return {r.plc, r.analysis};
+}
+
+Input from_off(const std::string& off) {
+  const CheckResult r = check_polyhedron(off.data(), off.size());
+  EXPECT_TRUE(r.valid) << r.error;
+  return {r.plc, r.analysis};
+}
+
+double orient(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return dot(sub(b, a), cross(sub(c, a), sub(d, a)));
+}
+
+double diag(const PLC& plc) {
+  Point3 lo = plc.vertices[0], hi = plc.vertices[0];
+  for (const Point3& p : plc.vertices)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  return std::sqrt(mesher::dist2(lo, hi));
+}
+
+double facet_area(const PLC& plc, const PlcFacet& f) {
+  Point3 n{{0, 0, 0}};
+  for (const auto& loop : f.loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point3& a = plc.vertices[loop[i]];
+      const Point3& b = plc.vertices[loop[(i + 1) % loop.size()]];
+      n = mesher::add(n, cross(a, b));
+    }
+  return 0.5 * std::sqrt(dot(n, n));
+}
+
+// Every invariant of the issue, from the mesh alone.
+void expect_invariants(const std::string& name, const Input& in, const MeshResult& r) {
+  SCOPED_TRACE(name);
+  ASSERT_TRUE(r.conforming);
+  ASSERT_TRUE(r.stopped.empty());
+  const TetMesh& m = r.mesh;
+  const PLC& plc = in.plc;
+  ASSERT_FALSE(m.tets.empty());
+  const double d = diag(plc);
+
+  // Orientation and volume.
+  double volume = 0;
+  for (const auto& t : m.tets) {
+    const double o = orient(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    EXPECT_GT(o, 0);
+    volume += o / 6;
+  }
+  const double v_in = plc_volume(plc);
+  EXPECT_NEAR(volume, v_in, 1e-9 * std::fabs(v_in));
+
+  // Input vertices: vertex i of the mesh, at its exact coordinates.
+  for (std::size_t i = 0; i < plc.vertices.size(); ++i) {
+    ASSERT_LT(i, m.vertices.size());
+    EXPECT_EQ(m.vertices[i], plc.vertices[i]);
+    EXPECT_EQ(r.input_vertex[i], int(i));
+  }
+
+  // Boundary triangles: in their facet's plane, and covering it exactly.
+  std::vector<double> covered(plc.facets.size(), 0);
+  ASSERT_EQ(m.boundary.size(), m.boundary_facet.size());
+  for (std::size_t i = 0; i < m.boundary.size(); ++i) {
+    const int f = m.boundary_facet[i];
+    ASSERT_GE(f, 0) << "a boundary triangle in no input facet";
+    const auto& t = m.boundary[i];
+    const Point3 n = cross(sub(m.vertices[t[1]], m.vertices[t[0]]), sub(m.vertices[t[2]], m.vertices[t[0]]));
+    covered[f] += 0.5 * std::sqrt(dot(n, n));
+    // Outward, like the facet.
+    EXPECT_GT(dot(n, plc.facets[f].normal), 0);
+    const Point3& o = plc.vertices[plc.facets[f].loops[0][0]];
+    const Point3& fn = plc.facets[f].normal;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LE(std::fabs(dot(sub(m.vertices[t[k]], o), fn)) / std::sqrt(dot(fn, fn)), 1e-12 * d);
+  }
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    const double a = facet_area(plc, plc.facets[f]);
+    EXPECT_NEAR(covered[f], a, 1e-9 * a) << "facet " << f;
+  }
+
+  // Input edges: chains of mesh edges.
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : m.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) edges.insert({std::min(t[i], t[j]), std::max(t[i], t[j])});
+  for (const PlcEdge& e : plc.edges) {
+    const Point3 &a = plc.vertices[e.a], &b = plc.vertices[e.b];
+    const Point3 ab = sub(b, a);
+    const double len2 = dot(ab, ab);
+    std::vector<std::pair<double, int>> on;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      const Point3 av = sub(m.vertices[v], a);
+      const double t = dot(av, ab) / len2;
+      if (t < -1e-12 || t > 1 + 1e-12) continue;
+      const Point3 off = sub(av, mesher::mul(ab, t));
+      if (dot(off, off) <= 1e-24 * d * d) on.push_back({t, int(v)});
+    }
+    std::sort(on.begin(), on.end());
+    ASSERT_GE(on.size(), 2u);
+    EXPECT_EQ(on.front().second, e.a);
+    EXPECT_EQ(on.back().second, e.b);
+    for (std::size_t i = 0; i + 1 < on.size(); ++i) {
+      const int p = std::min(on[i].second, on[i + 1].second), q = std::max(on[i].second, on[i + 1].second);
+      EXPECT_TRUE(edges.count({p, q})) << "input edge " << e.a << "-" << e.b << " is not a chain of mesh edges";
+    }
+  }
+
+  // Weights within the bound [0, N(v)^2/9].
+  if (!m.weights.empty()) {
+    ASSERT_EQ(m.weights.size(), m.vertices.size());
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      EXPECT_GE(m.weights[v], 0);
+      EXPECT_LE(m.weights[v], r.nearest_neighbour[v] * r.nearest_neighbour[v] / 9 * (1 + 1e-12));
+    }
+  }
+
+  // Regular triangulation: across every inner face, the opposite vertex is
+  // not weighted-inside the orthosphere.
+  std::map<std::array<int, 3>, std::pair<int, int>> face_owner;
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int, 3> f;
+      for (int j = 0, n = 0; j < 4; ++j)
+        if (j != k) f[n++] = m.tets[i][j];
+      std::sort(f.begin(), f.end());
+      const auto it = face_owner.find(f);
+      if (it == face_owner.end()) {
+        face_owner[f] = {int(i), k};
+        continue;
+      }
+      const auto& t = m.tets[it->second.first];
+      const int x = m.tets[i][k];
+      std::array<double, 4> w{};
+      for (int j = 0; j < 4; ++j) w[j] = m.weights.empty() ? 0 : m.weights[t[j]];
+      const TetQuality q = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]], &w);
+      (void)q;
+      // Orthocenter from the definition |z - p|^2 - w = Z^2.
+      double a[3][4];
+      for (int row = 0; row < 3; ++row) {
+        const Point3& p = m.vertices[t[row + 1]];
+        const Point3& p0 = m.vertices[t[0]];
+        for (int c = 0; c < 3; ++c) a[row][c] = 2 * (p[c] - p0[c]);
+        a[row][3] = dot(p, p) - w[row + 1] - dot(p0, p0) + w[0];
+      }
+      for (int c = 0; c < 3; ++c) {
+        int piv = c;
+        for (int row = c + 1; row < 3; ++row)
+          if (std::fabs(a[row][c]) > std::fabs(a[piv][c])) piv = row;
+        std::swap(a[c], a[piv]);
+        for (int row = 0; row < 3; ++row)
+          if (row != c) {
+            const double fct = a[row][c] / a[c][c];
+            for (int k2 = c; k2 < 4; ++k2) a[row][k2] -= fct * a[c][k2];
+          }
+      }
+      const Point3 z{{a[0][3] / a[0][0], a[1][3] / a[1][1], a[2][3] / a[2][2]}};
+      const double z2 = mesher::dist2(m.vertices[t[0]], z) - w[0];
+      const double wx = m.weights.empty() ? 0 : m.weights[x];
+      const double power = mesher::dist2(m.vertices[x], z) - wx - z2;
+      // Nearly flat tets have no orthosphere that doubles can tell.
+      const TetQuality tq = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+      if (tq.min_dihedral_deg > 1e-3 && std::isfinite(z2))
+        EXPECT_GE(power, -1e-6 * std::max(z2, 1e-300))
+            << "vertex " << x << " inside the orthosphere of " << t[0] << " " << t[1] << " " << t[2] << " "
+            << t[3] << " (min dihedral " << tq.min_dihedral_deg << ", z2 " << z2 << ")";
+    }
+
+  // Classes agree with the definitions and the counts.
+  std::size_t violations = 0;
+  for (std::size_t i = 0; i < m.tets.size(); ++i) violations += r.tet_class[i] == TetClass::violation;
+  EXPECT_EQ(violations, r.violations);
+}
+
+std::vector<std::string> models(const std::string& dir, const std::set<std::string>& names) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return out;
+  for (const std::string& n : names)
+    if (fs::exists(dir + "/" + n)) out.push_back(dir + "/" + n);
+  return out;
+}
+
+TEST(Mesher, ExampleModelsMeetEveryInvariant) {
+  const auto files = models(WQMESH_EXAMPLE_MODELS,
+                            {"box.off", "bracket.off", "edge_facet.off", "slit.off", "spike.off", "wedge.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  for (const std::string& f : files) {
+    const Input in = load(f);
+    const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+    expect_invariants(f, in, r);
+    EXPECT_EQ(r.violations, 0u) << f;
+  }
+}
+
+TEST(Mesher, SharedSmallModelsMeetEveryInvariant) {
+  const auto files = models(WQMESH_SHARED_MODELS, {"wedge.off", "slit-1.off", "extrusion.off", "schonhardt.off",
+                                                   "example012.stl", "20mm-xyz-cube.stl"});
+  if (files.empty()) GTEST_SKIP() << "../shared/models is absent";
+  for (const std::string& f : files) {
+    const Input in = load(f);
+    const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+    expect_invariants(f, in, r);
+    std::printf("[ mesher   ] %s: %zu vertices, %zu tets, slivers %zu (QMESH %zu), skinny %zu, violations %zu\n",
+                fs::path(f).filename().c_str(), r.mesh.vertices.size(), r.mesh.tets.size(), r.slivers,
+                r.slivers_before_pump, r.skinny, r.violations);
+  }
+}
+
+TEST(Mesher, BoxHasNoProtectingBallAndNoViolation) {
+  const Input in = from_off("OFF\n8 6 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n0 0 1\n2 0 1\n2 1 1\n0 1 1\n"
+                            "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+  expect_invariants("box", in, r);
+  EXPECT_TRUE(r.protecting_balls.empty());
+  EXPECT_EQ(r.violations, 0u);
+  EXPECT_EQ(r.near_small_angle, 0u);
+  EXPECT_EQ(r.sharp_elements, 0u);
+}
+
+TEST(Mesher, LShapedBlockHasNoViolation) {
+  const Input in = from_off(
+      "OFF\n12 8 0\n0 0 0\n2 0 0\n2 1 0\n1 1 0\n1 2 0\n0 2 0\n0 0 1\n2 0 1\n2 1 1\n1 1 1\n1 2 1\n0 2 1\n"
+      "6 0 5 4 3 2 1\n6 6 7 8 9 10 11\n4 0 1 7 6\n4 1 2 8 7\n4 2 3 9 8\n4 3 4 10 9\n4 4 5 11 10\n4 5 0 6 11\n");
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+  expect_invariants("L-block", in, r);
+  EXPECT_TRUE(r.protecting_balls.empty());
+  EXPECT_EQ(r.violations, 0u);
+}
+
+TEST(Mesher, ProvenRhoLeavesNoSkinnyViolation) {
+  // rho0 = 3.5 > 2/(1 - tan(pi/8)): skinny tets lie near small angles.
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"wedge.off", "spike.off", "slit.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  MeshOptions o;
+  o.rho0 = 3.5;
+  for (const std::string& f : files) {
+    const Input in = load(f);
+    const MeshResult r = mesh_polyhedron(in.plc, in.analysis, o);
+    expect_invariants(f, in, r);
+    for (std::size_t i = 0; i < r.mesh.tets.size(); ++i)
+      if (r.quality[i].radius_edge > o.rho0) EXPECT_NE(r.tet_class[i], TetClass::violation) << f;
+  }
+}
+
+TEST(Mesher, PumpLeavesStrictlyFewerSliversThanQmesh) {
+  const auto files = models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"});
+  if (files.empty()) GTEST_SKIP() << "../shared/models is absent";
+  const Input in = load(files[0]);
+  MeshOptions qmesh;
+  qmesh.pump = false;
+  const MeshResult before = mesh_polyhedron(in.plc, in.analysis, qmesh);
+  const MeshResult after = mesh_polyhedron(in.plc, in.analysis);
+  expect_invariants("20mm cube, QMESH", in, before);
+  expect_invariants("20mm cube, WQMESH", in, after);
+  ASSERT_GT(before.slivers, 0u);
+  EXPECT_LT(after.slivers, before.slivers);
+  EXPECT_GT(after.pumped_vertices, 0u);
+}
+
+TEST(Mesher, SameInputSameMesh) {
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  const Input in = load(files[0]);
+  const MeshResult a = mesh_polyhedron(in.plc, in.analysis);
+  const MeshResult b = mesh_polyhedron(in.plc, in.analysis);
+  EXPECT_EQ(a.mesh.vertices, b.mesh.vertices);
+  EXPECT_EQ(a.mesh.tets, b.mesh.tets);
+  EXPECT_EQ(a.mesh.weights, b.mesh.weights);
+}
+
+TEST(Mesher, VertexLimitAndCancelStopTheRun) {
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"wedge.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  const Input in = load(files[0]);
+  MeshOptions o;
+  o.max_vertices = 60;
+  const MeshResult limited = mesh_polyhedron(in.plc, in.analysis, o);
+  EXPECT_EQ(limited.stopped, "limit");
+  std::size_t calls = 0;
+  const MeshResult cancelled = mesh_polyhedron(in.plc, in.analysis, {}, [&](const Progress& p) {
+    EXPECT_GE(p.fraction, 0);
+    EXPECT_LE(p.fraction, 1);
+    return ++calls < 2;
+  });
+  EXPECT_EQ(cancelled.stopped, "cancelled");
+  EXPECT_GE(calls, 2u);
+}
+
+TEST(Mesher, MaxSizeBoundsTheCircumradius) {
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"box.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  const Input in = load(files[0]);
+  MeshOptions o;
+  o.max_size = 0.25;
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis, o);
+  expect_invariants("box, max_size", in, r);
+  for (const TetQuality& q : r.quality) EXPECT_LE(q.radius, o.max_size * (1 + 1e-9));
+}
+
+// ---- rules on tiny inputs ------------------------------------------------------
+
+// A thin wedge: a triangular prism whose edge along z has a dihedral angle of
+// atan(0.2) ~ 11.3 degrees.
+const char* kWedge =
+    "OFF\n6 5 0\n0 0 0\n1 0 0\n1 0.2 0\n0 0 1\n1 0 1\n1 0.2 1\n"
+    "3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 1 2 5 4\n4 2 0 3 5\n";
+
+TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex) {
+  const Input in = from_off(kWedge);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  m.initialize();
+  ASSERT_FALSE(in.analysis.sharp_vertices.empty());
+  for (std::size_t i = 0; i < in.analysis.sharp_vertices.size(); ++i) {
+    const int u = in.analysis.sharp_vertices[i];
+    const double r = in.analysis.lfs[i] / 4;
+    for (const PlcEdge& e : in.plc.edges) {
+      if (e.a != u && e.b != u) continue;
+      const int w = e.a == u ? e.b : e.a;
+      const Point3 dir = sub(in.plc.vertices[w], in.plc.vertices[u]);
+      const Point3 expected = mesher::add(in.plc.vertices[u], mesher::mul(dir, r / std::sqrt(dot(dir, dir))));
+      bool found = false;
+      for (int v = 0; v < m.triangulation().number_of_vertices(); ++v)
+        if (mesher::dist2(m.triangulation().point(v), expected) < 1e-24) found = true;
+      EXPECT_TRUE(found) << "no ball point of vertex " << u << " on its edge to " << w;
+    }
+  }
+  // The subsegments from a sharp vertex to its ball points are protected.
+  const int np = static_cast<int>(dom.p.vertices.size());
+  std::size_t protected_count = 0;
+  for (const auto& [k, s] : m.subsegments()) {
+    if (s.edge < 0) continue;
+    const bool from_sharp_vertex = (s.a < np && dom.sharp_vertex[s.a] && m.vertices()[s.b].ball == s.a) ||
+                                   (s.b < np && dom.sharp_vertex[s.b] && m.vertices()[s.a].ball == s.b);
+    EXPECT_EQ(s.in_ball, from_sharp_vertex) << s.a << "-" << s.b;
+    protected_count += s.in_ball;
+  }
+  std::size_t expected = 0;
+  for (int u : in.analysis.sharp_vertices) expected += dom.vertex_edges[u].size();
+  EXPECT_EQ(protected_count, expected);
+}
+
+TEST(MesherRules, SplitePutsTheMidpointOrTheArcMidpoint) {
+  const Input in = from_off(kWedge);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  m.initialize();
+  // A point just beside the midpoint of a non-protected subsegment
+  // encroaches it: ENCROACH returns that midpoint (section 4.3, case 2).
+  for (const auto& [k, s] : m.subsegments()) {
+    if (s.in_ball || s.sector >= 0) continue;
+    const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
+    const Point3 mid = mesher::midpoint(a, b);
+    Point3 off = cross(sub(b, a), Point3{{0.3, 0.5, 0.7}});
+    off = mesher::mul(off, 1e-3 * std::sqrt(mesher::dist2(a, b)) / std::sqrt(dot(off, off)));
+    const mesher::Insertion ins = m.encroach(mesher::add(mid, off), s.a);
+    EXPECT_TRUE(ins.has_segment);
+    EXPECT_EQ(ins.on, mesher::On::edge);
+    EXPECT_EQ(ins.p, mid);
+    break;
+  }
+  // A shield subsegment is split at the midpoint of its arc (SOS): that point
+  // is on the sphere of the vertex ball, at equal distance from both ends.
+  for (const auto& [k, s] : m.subsegments()) {
+    if (s.sector < 0) continue;
+    const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
+    const Point3 mid = mesher::midpoint(a, b);
+    const mesher::Insertion ins = m.encroach(mid, s.a);
+    ASSERT_TRUE(ins.has_segment);
+    const int u = m.vertices()[s.a].ball;
+    ASSERT_GE(u, 0);
+    const double r = dom.ball_radius[u];
+    EXPECT_NEAR(std::sqrt(mesher::dist2(ins.p, dom.p.vertices[u])), r, 1e-12 * r);
+    EXPECT_NEAR(mesher::dist2(ins.p, a), mesher::dist2(ins.p, b), 1e-12 * r * r);
+    break;
+  }
+}
+
+TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
+  // ENCROACH(c) (section 4.3) returns c when c encroaches no subsegment (on or
+  // inside its diametric ball) and no subfacet (strictly inside); otherwise a
+  // point splitting a feature. Checked against every feature, on a grid of c.
+  const Input in = from_off(kWedge);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  m.initialize();
+  m.conform();
+  ASSERT_TRUE(m.conforms());
+  const auto& tri = m.triangulation();
+  const std::vector<mesher::Subfacet> facets = m.subfacets();
+  int free_points = 0, split_points = 0;
+  for (int i = 1; i < 8; ++i)
+    for (int j = 1; j < 8; ++j)
+      for (int k = 1; k < 8; ++k) {
+        Point3 c;
+        const int ijk[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) c[a] = dom.box.lo[a] + (dom.box.hi[a] - dom.box.lo[a]) * (ijk[a] + 0.137) / 8.0;
+        bool encroaches = false;
+        for (const auto& [key, sg] : m.subsegments()) {
+          if (sg.in_ball) continue;
+          const Point3 a = tri.point(sg.a), b = tri.point(sg.b);
+          if (mesher::dist2(c, mesher::midpoint(a, b)) <= 0.25 * mesher::dist2(a, b)) encroaches = true;
+        }
+        for (const mesher::Subfacet& h : facets) {
+          double r2;
+          const Point3 cc = mesher::circumcenter(tri.point(h.v[0]), tri.point(h.v[1]), tri.point(h.v[2]), r2);
+          if (mesher::dist2(c, cc) < r2) encroaches = true;
+        }
+        const mesher::Insertion ins = m.encroach(c, 0);
+        if (encroaches) {
+          ++split_points;
+          EXPECT_NE(ins.on, mesher::On::free) << "c encroaches a feature but ENCROACH returned it";
+        } else {
+          ++free_points;
+          EXPECT_EQ(ins.on, mesher::On::free);
+          EXPECT_EQ(ins.p, c);
+        }
+      }
+  EXPECT_GT(free_points, 0);
+  EXPECT_GT(split_points, 0);
+  std::size_t vertex_balls = 0;
+  for (const ProtectingBall& b : m.protecting_balls()) vertex_balls += b.vertex_ball;
+  EXPECT_EQ(vertex_balls, in.analysis.sharp_vertices.size());
+}
+
+TEST(MesherRules, SharpSubsegmentsGetDoubledDiametricBalls) {
+  const Input in = from_off(kWedge);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  m.initialize();
+  m.conform();
+  std::size_t sharp = 0;
+  for (const auto& [k, s] : m.subsegments()) {
+    if (!s.sharp) continue;
+    ++sharp;
+    const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
+    bool found = false;
+    for (const ProtectingBall& ball : m.protecting_balls())
+      if (!ball.vertex_ball && ball.center == mesher::midpoint(a, b) &&
+          std::fabs(ball.radius - std::sqrt(mesher::dist2(a, b))) < 1e-15 * ball.radius)
+        found = true;
+    EXPECT_TRUE(found);
+  }
+  EXPECT_GT(sharp, 0u);
+}
+
+}  // namespace
+}  // namespace wqmesh

@@ -1,0 +1,473 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Tests of the shape measures of section 3 of the paper (radius-edge ratio,
+// orthoradius, normalized volume, angles) and of the Table 2 statistics.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include "wqmesh/quality.h"
+
+namespace wqmesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const double kInf = std::numeric_limits<double>::infinity();
+
+double deg(double rad) { return rad * 180.0 / kPi; }
+
+double dist2(const Point3& p, const Point3& q) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) s += (p[k] - q[k]) * (p[k] - q[k]);
+  return s;
+}
+
+/// Every field of a TetQuality is a number (no NaN), angles in [0, 180].
+void expect_well_defined(const TetQuality& q) {
+  EXPECT_FALSE(std::isnan(q.volume));
+  EXPECT_FALSE(std::isnan(q.radius));
+  EXPECT_FALSE(std::isnan(q.shortest_edge));
+  EXPECT_FALSE(std::isnan(q.longest_edge));
+  EXPECT_FALSE(std::isnan(q.radius_edge));
+  EXPECT_FALSE(std::isnan(q.normalized_volume));
+  EXPECT_FALSE(std::isnan(q.inradius));
+  EXPECT_FALSE(std::isnan(q.aspect_ratio));
+  for (double a : q.dihedral_deg) {
+    EXPECT_GE(a, 0);
+    EXPECT_LE(a, 180);
+  }
+  for (double a : q.face_angle_deg) {
+    EXPECT_GE(a, 0);
+    EXPECT_LE(a, 180);
+  }
+  EXPECT_FALSE(std::isnan(q.min_dihedral_deg));
+  EXPECT_FALSE(std::isnan(q.max_dihedral_deg));
+  EXPECT_FALSE(std::isnan(q.min_face_angle_deg));
+}
+
+// The regular tetrahedron with edge 2 sqrt 2 inscribed in the cube [-1,1]^3,
+// ordered so that its signed volume is positive (det = +16, vol = 8/3).
+const Point3 kR0{{1, 1, 1}}, kR1{{-1, 1, -1}}, kR2{{1, -1, -1}}, kR3{{-1, -1, 1}};
+
+TEST(Quality, RegularTetrahedron) {
+  const TetQuality q = tet_quality(kR0, kR1, kR2, kR3);
+  expect_well_defined(q);
+  const double l = 2 * std::sqrt(2.0);
+  EXPECT_NEAR(q.volume, 8.0 / 3.0, 1e-14);
+  EXPECT_NEAR(q.shortest_edge, l, 1e-14);
+  EXPECT_NEAR(q.longest_edge, l, 1e-14);
+  EXPECT_NEAR(q.radius, std::sqrt(3.0), 1e-14);  // center 0, |(1,1,1)|
+  EXPECT_NEAR(q.radius_edge, std::sqrt(6.0) / 4, 1e-14);
+  EXPECT_NEAR(q.normalized_volume, 1 / (6 * std::sqrt(2.0)), 1e-14);
+  EXPECT_NEAR(q.inradius, std::sqrt(3.0) / 3, 1e-14);  // R / 3
+  EXPECT_NEAR(q.aspect_ratio, 3, 1e-13);
+  const double dihedral = deg(std::acos(1.0 / 3.0));  // ~70.528779 degrees
+  for (double a : q.dihedral_deg) EXPECT_NEAR(a, dihedral, 1e-12);
+  EXPECT_NEAR(q.min_dihedral_deg, dihedral, 1e-12);
+  EXPECT_NEAR(q.max_dihedral_deg, dihedral, 1e-12);
+  for (double a : q.face_angle_deg) EXPECT_NEAR(a, 60, 1e-12);
+  EXPECT_NEAR(q.min_face_angle_deg, 60, 1e-12);
+}
+
+TEST(Quality, OrientationSign) {
+  const TetQuality pos = tet_quality(kR0, kR1, kR2, kR3);
+  const TetQuality neg = tet_quality(kR1, kR0, kR2, kR3);  // one swap
+  EXPECT_GT(pos.volume, 0);
+  EXPECT_LT(neg.volume, 0);
+  EXPECT_DOUBLE_EQ(neg.volume, -pos.volume);
+  EXPECT_DOUBLE_EQ(neg.normalized_volume, -pos.normalized_volume);
+  // Unsigned measures do not depend on the orientation.
+  EXPECT_NEAR(neg.radius, pos.radius, 1e-14);
+  EXPECT_NEAR(neg.inradius, pos.inradius, 1e-14);
+  EXPECT_NEAR(neg.aspect_ratio, pos.aspect_ratio, 1e-13);
+  EXPECT_NEAR(neg.min_dihedral_deg, pos.min_dihedral_deg, 1e-12);
+  // The unit right-corner tet: positive in the right-handed sense.
+  const Point3 o{{0, 0, 0}}, x{{1, 0, 0}}, y{{0, 1, 0}}, z{{0, 0, 1}};
+  EXPECT_NEAR(tet_quality(o, x, y, z).volume, 1.0 / 6.0, 1e-16);
+  EXPECT_NEAR(tet_quality(o, y, x, z).volume, -1.0 / 6.0, 1e-16);
+  // An even permutation keeps the sign.
+  EXPECT_NEAR(tet_quality(x, y, o, z).volume, 1.0 / 6.0, 1e-16);
+}
+
+TEST(Quality, RightCornerTetrahedron) {
+  const Point3 o{{0, 0, 0}}, x{{1, 0, 0}}, y{{0, 1, 0}}, z{{0, 0, 1}};
+  const TetQuality q = tet_quality(o, x, y, z);
+  expect_well_defined(q);
+  // Edges at o: between two coordinate planes, 90 degrees. Edges of the
+  // slanted face: between a coordinate plane (normal e_k) and the face of
+  // normal (1,1,1)/sqrt 3, arccos(1/sqrt 3) = arctan(sqrt 2) ~ 54.7356.
+  const double slanted = deg(std::atan(std::sqrt(2.0)));
+  EXPECT_NEAR(q.dihedral_deg[0], 90, 1e-12);       // 01 = ox
+  EXPECT_NEAR(q.dihedral_deg[1], 90, 1e-12);       // 02 = oy
+  EXPECT_NEAR(q.dihedral_deg[2], 90, 1e-12);       // 03 = oz
+  EXPECT_NEAR(q.dihedral_deg[3], slanted, 1e-12);  // 12 = xy
+  EXPECT_NEAR(q.dihedral_deg[4], slanted, 1e-12);  // 13 = xz
+  EXPECT_NEAR(q.dihedral_deg[5], slanted, 1e-12);  // 23 = yz
+  EXPECT_NEAR(q.min_dihedral_deg, slanted, 1e-12);
+  EXPECT_NEAR(q.max_dihedral_deg, 90, 1e-12);
+  // Circumcenter (1/2,1/2,1/2): R = sqrt 3 / 2; l = 1, longest sqrt 2.
+  EXPECT_NEAR(q.radius, std::sqrt(3.0) / 2, 1e-15);
+  EXPECT_NEAR(q.shortest_edge, 1, 1e-15);
+  EXPECT_NEAR(q.longest_edge, std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(3.0) / 2, 1e-15);
+  EXPECT_NEAR(q.normalized_volume, 1.0 / 6.0, 1e-15);
+  // Area 3/2 + sqrt 3 / 2, so r = 3 (1/6) / area = 1 / (3 + sqrt 3).
+  const double r = 1 / (3 + std::sqrt(3.0));
+  EXPECT_NEAR(q.inradius, r, 1e-15);
+  EXPECT_NEAR(q.aspect_ratio, (std::sqrt(3.0) / 2) / r, 1e-14);
+  // Face 0 = xyz is equilateral; face 3 = oxy has its right angle at o.
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(q.face_angle_deg[k], 60, 1e-12);
+  EXPECT_NEAR(q.face_angle_deg[9], 90, 1e-12);
+  EXPECT_NEAR(q.face_angle_deg[10], 45, 1e-12);
+  EXPECT_NEAR(q.face_angle_deg[11], 45, 1e-12);
+  EXPECT_NEAR(q.face_angle_deg[3], 90, 1e-12);  // face 1 = oyz, corner o
+  EXPECT_NEAR(q.face_angle_deg[6], 90, 1e-12);  // face 2 = oxz, corner o
+  EXPECT_NEAR(q.min_face_angle_deg, 45, 1e-12);
+}
+
+// A sliver: the four corners of the unit square, one diagonal lifted by h.
+// Circumcenter (1/2, 1/2, h/2): R^2 = 1/2 + h^2/4; l = sqrt(1 + h^2);
+// vol = h/3. The four side edges carry the small dihedral angle theta, with
+// sin theta = 3 vol |e| / (2 A1 A2) and both faces of area sqrt(1 + 2h^2)/2:
+// sin theta = 2h sqrt(1 + h^2) / (1 + 2h^2).
+TEST(Quality, Sliver) {
+  const double h = 1e-3;
+  const Point3 a{{0, 0, 0}}, b{{1, 0, h}}, c{{1, 1, 0}}, d{{0, 1, h}};
+  const TetQuality q = tet_quality(a, b, c, d);
+  expect_well_defined(q);
+  EXPECT_NEAR(q.volume, h / 3, 1e-18);
+  EXPECT_NEAR(q.radius, std::sqrt(0.5 + h * h / 4), 1e-14);
+  EXPECT_NEAR(q.shortest_edge, std::sqrt(1 + h * h), 1e-15);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(0.5 + h * h / 4) / std::sqrt(1 + h * h), 1e-12);
+  EXPECT_NEAR(q.radius_edge, 1 / std::sqrt(2.0), 1e-6);  // good R/l ...
+  const double theta = deg(std::asin(2 * h * std::sqrt(1 + h * h) / (1 + 2 * h * h)));
+  EXPECT_NEAR(q.min_dihedral_deg, theta, 1e-9);  // ... but a tiny dihedral
+  EXPECT_LT(q.min_dihedral_deg, 0.2);
+  // The side edges are 01 (ab), 03 (ad), 12 (bc), 23 (cd); the diagonals
+  // 02 (ac) and 13 (bd) carry dihedrals close to 180.
+  for (int i : {0, 2, 3, 5}) EXPECT_NEAR(q.dihedral_deg[i], theta, 1e-9);
+  EXPECT_GT(q.dihedral_deg[1], 179.5);
+  EXPECT_GT(q.dihedral_deg[4], 179.5);
+  EXPECT_NEAR(q.normalized_volume, (h / 3) / std::pow(1 + h * h, 1.5), 1e-15);
+  EXPECT_GT(q.aspect_ratio, 100);  // bad aspect ratio, good radius-edge ratio
+}
+
+// A cap: the apex lies just above the centroid of the opposite face. Huge
+// circumradius, three dihedrals near 180 at the apex edges, apex angles ~120.
+TEST(Quality, Cap) {
+  const double eps = 1e-4;
+  const Point3 a{{0, 0, 0}}, b{{1, 0, 0}}, c{{0, 1, 0}}, d{{1.0 / 3, 1.0 / 3, eps}};
+  const TetQuality q = tet_quality(a, b, c, d);
+  expect_well_defined(q);
+  EXPECT_NEAR(q.volume, eps / 6, 1e-18);
+  EXPECT_GT(q.radius_edge, 2.2);
+  EXPECT_GT(q.aspect_ratio, 1000);
+  // Apex edges 03, 13, 23: dihedral near 180; base edges 01, 02, 12: near 0.
+  for (int i : {2, 4, 5}) EXPECT_GT(q.dihedral_deg[i], 179);
+  for (int i : {0, 1, 3}) EXPECT_LT(q.dihedral_deg[i], 1);
+  // The apex angles of faces 0 (bcd), 1 (acd), 2 (abd) surround the
+  // projection of d, inside abc: their sum tends to 360 as eps -> 0.
+  const double apex_sum = q.face_angle_deg[2] + q.face_angle_deg[5] + q.face_angle_deg[8];
+  EXPECT_NEAR(apex_sum, 360, 1e-3);
+  // Circumradius from the definition: center x with 2 x.e_i = |e_i|^2; for
+  // e1 = (1,0,0), e2 = (0,1,0) this gives x = (1/2, 1/2, z) with
+  // 2 (d . x) = |d|^2.
+  const double z = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - d[0] - d[1]) / (2 * d[2]);
+  EXPECT_NEAR(q.radius / std::sqrt(0.5 + z * z), 1, 1e-9);
+}
+
+// A needle: a tiny base triangle and a far apex.
+TEST(Quality, Needle) {
+  const double eps = 1e-3;
+  const Point3 a{{0, 0, 0}}, b{{eps, 0, 0}}, c{{0, eps, 0}}, d{{0, 0, 1}};
+  const TetQuality q = tet_quality(a, b, c, d);
+  expect_well_defined(q);
+  // Circumcenter (eps/2, eps/2, 1/2).
+  EXPECT_NEAR(q.radius, std::sqrt(eps * eps / 2 + 0.25), 1e-15);
+  EXPECT_NEAR(q.shortest_edge, eps, 1e-18);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(eps * eps / 2 + 0.25) / eps, 1e-9);
+  EXPECT_NEAR(q.longest_edge, std::sqrt(1 + eps * eps), 1e-15);
+  // Apex angle of face abd (face 2, corner 2) is arctan(eps).
+  EXPECT_NEAR(q.face_angle_deg[8], deg(std::atan(eps)), 1e-10);
+  EXPECT_LT(q.min_face_angle_deg, deg(std::atan(eps)) + 1e-10);
+  EXPECT_NEAR(q.dihedral_deg[2], 90, 1e-10);  // edge ad between x=0 and y=0
+}
+
+TEST(Quality, InvariantsOnRandomTets) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int n = 0; n < 200; ++n) {
+    Point3 p[4];
+    for (auto& v : p)
+      for (double& x : v) x = u(rng);
+    const TetQuality q = tet_quality(p[0], p[1], p[2], p[3]);
+    expect_well_defined(q);
+    // Angles of each face sum to 180.
+    for (int f = 0; f < 4; ++f)
+      EXPECT_NEAR(q.face_angle_deg[3 * f] + q.face_angle_deg[3 * f + 1] +
+                      q.face_angle_deg[3 * f + 2],
+                  180, 1e-9);
+    // Every edge is a chord of the circumsphere.
+    EXPECT_GE(q.radius, q.longest_edge / 2 * (1 - 1e-12));
+    // R/l >= sqrt(6)/4 and r <= R/3 for every tetrahedron.
+    EXPECT_GE(q.radius_edge, std::sqrt(6.0) / 4 * (1 - 1e-12));
+    EXPECT_GE(q.aspect_ratio, 3 * (1 - 1e-12));
+    // Dihedral at edge 01: sin theta = 3 |vol| |e01| / (2 A2 A3), where A2,
+    // A3 are the areas of faces 013 (opposite 2) and 012 (opposite 3).
+    auto area = [](const Point3& x, const Point3& y, const Point3& z) {
+      const double a2 = dist2(x, y), b2 = dist2(y, z), c2 = dist2(z, x);
+      // Heron in the form 16 A^2 = 4 a^2 b^2 - (a^2 + b^2 - c^2)^2.
+      return 0.25 * std::sqrt(std::max(0.0, 4 * a2 * b2 - (a2 + b2 - c2) * (a2 + b2 - c2)));
+    };
+    const double s = 3 * std::fabs(q.volume) * std::sqrt(dist2(p[0], p[1])) /
+                     (2 * area(p[0], p[1], p[3]) * area(p[0], p[1], p[2]));
+    EXPECT_NEAR(std::sin(q.dihedral_deg[0] * kPi / 180), s, 1e-8);
+    // Unweighted is the same as all-zero weights.
+    const std::array<double, 4> zero{};
+    EXPECT_DOUBLE_EQ(tet_quality(p[0], p[1], p[2], p[3], &zero).radius, q.radius);
+  }
+}
+
+TEST(Quality, DegenerateTetsAreWellDefined) {
+  const Point3 a{{0, 0, 0}}, b{{1, 0, 0}}, c{{1, 1, 0}}, d{{0, 1, 0}}, m{{0.5, 0, 0}};
+  // Four coplanar points (the sliver with h = 0).
+  TetQuality q = tet_quality(a, b, c, d);
+  expect_well_defined(q);
+  EXPECT_EQ(q.volume, 0);
+  EXPECT_EQ(q.inradius, 0);
+  EXPECT_EQ(q.radius, kInf);
+  EXPECT_EQ(q.radius_edge, kInf);
+  EXPECT_EQ(q.aspect_ratio, kInf);
+  for (double x : q.dihedral_deg) EXPECT_TRUE(x == 0 || x == 180) << x;
+  EXPECT_EQ(q.min_dihedral_deg, 0);
+  EXPECT_EQ(q.max_dihedral_deg, 180);
+  // Collinear points and a flat triangle with a vertex on an edge.
+  expect_well_defined(tet_quality(a, m, b, c));
+  expect_well_defined(tet_quality(a, m, b, Point3{{2, 0, 0}}));
+  // Coincident vertices.
+  q = tet_quality(a, a, b, c);
+  expect_well_defined(q);
+  EXPECT_EQ(q.shortest_edge, 0);
+  EXPECT_EQ(q.radius_edge, kInf);
+  EXPECT_EQ(q.normalized_volume, 0);
+  q = tet_quality(a, a, a, a);
+  expect_well_defined(q);
+  EXPECT_EQ(q.min_face_angle_deg, 0);
+  EXPECT_EQ(q.max_dihedral_deg, 0);
+  // Weighted degenerate tet.
+  const std::array<double, 4> w{{0.1, 0.2, 0.3, 0.4}};
+  expect_well_defined(tet_quality(a, b, c, d, &w));
+}
+
+TEST(Quality, EqualWeightsGiveOrthoradiusSquaredRMinusW) {
+  // Section 3: |z - p_i|^2 - W - Z^2 = 0 with the circumcenter z, so
+  // Z^2 = R^2 - W = 3 - W for the regular tetrahedron (R^2 = 3).
+  for (double w : {0.0, 0.25, 1.0, 2.5}) {
+    const std::array<double, 4> ws{{w, w, w, w}};
+    const TetQuality q = tet_quality(kR0, kR1, kR2, kR3, &ws);
+    EXPECT_NEAR(q.radius * q.radius, 3 - w, 1e-13) << w;
+    EXPECT_NEAR(q.radius_edge, std::sqrt(3 - w) / (2 * std::sqrt(2.0)), 1e-14);
+    // The aspect ratio stays the unweighted one.
+    EXPECT_NEAR(q.aspect_ratio, 3, 1e-13);
+  }
+  // A negative orthosphere weight (W > R^2) reports radius 0.
+  const std::array<double, 4> big{{4, 4, 4, 4}};
+  const TetQuality q = tet_quality(kR0, kR1, kR2, kR3, &big);
+  EXPECT_EQ(q.radius, 0);
+  EXPECT_EQ(q.radius_edge, 0);
+}
+
+/// Solves the 3x3 system M x = r by Gaussian elimination with partial pivoting.
+Point3 solve3(double M[3][3], double r[3]) {
+  for (int col = 0; col < 3; ++col) {
+    int piv = col;
+    for (int row = col + 1; row < 3; ++row)
+      if (std::fabs(M[row][col]) > std::fabs(M[piv][col])) piv = row;
+    for (int k = 0; k < 3; ++k) std::swap(M[col][k], M[piv][k]);
+    std::swap(r[col], r[piv]);
+    for (int row = col + 1; row < 3; ++row) {
+      const double f = M[row][col] / M[col][col];
+      for (int k = col; k < 3; ++k) M[row][k] -= f * M[col][k];
+      r[row] -= f * r[col];
+    }
+  }
+  Point3 x;
+  for (int row = 2; row >= 0; --row) {
+    double s = r[row];
+    for (int k = row + 1; k < 3; ++k) s -= M[row][k] * x[k];
+    x[row] = s / M[row][row];
+  }
+  return x;
+}
+
+TEST(Quality, WeightedOrthosphereSatisfiesDefinition) {
+  // Right-corner tet by hand: 2 z_i = 1 - W_{i+1} + W_0, so z = (0.55, 0.45,
+  // 0.5) and Z^2 = |z|^2 - W_0 = 0.655 for W = (0.1, 0, 0.2, 0.1); checked
+  // against the definition |z - p_i|^2 - W_i = Z^2 for all four i.
+  const Point3 p[4] = {{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}};
+  const std::array<double, 4> w{{0.1, 0.0, 0.2, 0.1}};
+  const Point3 z{{(1 - w[1] + w[0]) / 2, (1 - w[2] + w[0]) / 2, (1 - w[3] + w[0]) / 2}};
+  const double Z2 = dist2(z, p[0]) - w[0];
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(dist2(z, p[i]) - w[i], Z2, 1e-15);
+  const TetQuality q = tet_quality(p[0], p[1], p[2], p[3], &w);
+  EXPECT_NEAR(Z2, 0.655, 1e-15);
+  EXPECT_NEAR(q.radius, std::sqrt(Z2), 1e-15);
+  EXPECT_NEAR(q.radius_edge, std::sqrt(Z2), 1e-15);  // l = 1
+
+  // Random weighted tets: solve the definition independently (Gaussian
+  // elimination), check its residuals and compare.
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(-1, 1), uw(0, 0.3);
+  for (int n = 0; n < 100; ++n) {
+    Point3 v[4];
+    std::array<double, 4> W;
+    for (int i = 0; i < 4; ++i) {
+      for (double& x : v[i]) x = u(rng);
+      W[i] = uw(rng);
+    }
+    const TetQuality t = tet_quality(v[0], v[1], v[2], v[3], &W);
+    if (std::fabs(t.normalized_volume) < 1e-3) continue;  // ill-conditioned
+    double M[3][3], r[3];
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) M[i][k] = 2 * (v[i + 1][k] - v[0][k]);
+      r[i] = dist2(v[i + 1], Point3{{0, 0, 0}}) - dist2(v[0], Point3{{0, 0, 0}}) - W[i + 1] +
+             W[0];
+    }
+    const Point3 c = solve3(M, r);
+    const double c2 = dist2(c, v[0]) - W[0];
+    for (int i = 1; i < 4; ++i) EXPECT_NEAR(dist2(c, v[i]) - W[i], c2, 1e-9 * (1 + c2));
+    EXPECT_NEAR(t.radius, c2 > 0 ? std::sqrt(c2) : 0.0, 1e-9 * (1 + t.radius));
+  }
+}
+
+TEST(Quality, MeshQualityUsesWeightsAndChecksSizes) {
+  TetMesh mesh;
+  mesh.vertices = {kR0, kR1, kR2, kR3};
+  mesh.tets = {{{0, 1, 2, 3}}};
+  std::vector<TetQuality> q = mesh_quality(mesh);
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_NEAR(q[0].radius, std::sqrt(3.0), 1e-14);
+  mesh.weights = {0.5, 0.5, 0.5, 0.5};
+  q = mesh_quality(mesh);
+  EXPECT_NEAR(q[0].radius, std::sqrt(2.5), 1e-14);
+  mesh.weights = {0.5};
+  EXPECT_THROW(mesh_quality(mesh), std::invalid_argument);
+  mesh.weights.clear();
+  mesh.tets = {{{0, 1, 2, 4}}};
+  EXPECT_THROW(mesh_quality(mesh), std::out_of_range);
+  EXPECT_THROW(mesh_stats(mesh, {}), std::invalid_argument);
+}
+
+/// A TetQuality with only the fields mesh_stats bins on.
+TetQuality fake(double rho, double min_dihedral, double volume = 1) {
+  TetQuality q;
+  q.volume = volume;
+  q.radius_edge = rho;
+  q.min_dihedral_deg = min_dihedral;
+  q.max_dihedral_deg = 100;
+  q.min_face_angle_deg = 30;
+  q.aspect_ratio = 4;
+  return q;
+}
+
+TEST(Quality, StatsBinBoundaries) {
+  // Table 2 bins: R/l in [0.6, 1.4], (1.4, 2.2], > 2.2; smallest dihedral in
+  // [0, 3), [3, 5), [5, 10).
+  const double up = std::nextafter(1.4, 2.0), up2 = std::nextafter(2.2, 3.0);
+  std::vector<TetQuality> q = {
+      fake(0.59, 50),  // below 0.6
+      fake(0.6, 50),   // [0.6, 1.4]
+      fake(1.4, 50),   // [0.6, 1.4] (closed)
+      fake(up, 50),    // (1.4, 2.2]
+      fake(2.2, 50),   // (1.4, 2.2] (closed)
+      fake(up2, 50),   // > 2.2
+      fake(kInf, 50),  // > 2.2 (flat tet)
+      fake(1, 0),      // dihedral [0, 3)
+      fake(1, std::nextafter(3.0, 0.0)),
+      fake(1, 3),      // [3, 5)
+      fake(1, std::nextafter(5.0, 0.0)),
+      fake(1, 5),      // [5, 10)
+      fake(1, std::nextafter(10.0, 0.0)),
+      fake(1, 10),     // not binned
+      fake(3, 1),      // R/l > 2.2 with a small dihedral: not a sliver
+      fake(1, 60, 0),  // zero volume: inverted
+      fake(1, 60, -2), // negative volume: inverted
+  };
+  TetMesh mesh;
+  mesh.vertices.resize(5);
+  mesh.tets.resize(q.size());
+  const MeshStats s = mesh_stats(mesh, q);
+  EXPECT_EQ(s.vertices, 5u);
+  EXPECT_EQ(s.tets, q.size());
+  EXPECT_EQ(s.radius_edge_below, 1u);
+  EXPECT_EQ(s.radius_edge_bins[0], 2u + 9u);  // 0.6, 1.4 and the 9 with rho = 1
+  EXPECT_EQ(s.radius_edge_bins[1], 2u);
+  EXPECT_EQ(s.radius_edge_bins[2], 3u);
+  EXPECT_EQ(s.dihedral_bins[0], 3u);  // 0, 3^-, and the rho = 3 tet
+  EXPECT_EQ(s.dihedral_bins[1], 2u);
+  EXPECT_EQ(s.dihedral_bins[2], 2u);
+  EXPECT_EQ(s.slivers, 2u);
+  EXPECT_EQ(s.inverted, 2u);
+  EXPECT_DOUBLE_EQ(s.volume, 15.0 - 2.0);
+  EXPECT_EQ(s.min_dihedral_deg, 0);
+  EXPECT_EQ(s.max_dihedral_deg, 100);
+  EXPECT_EQ(s.min_face_angle_deg, 30);
+  EXPECT_EQ(s.max_radius_edge, kInf);
+  EXPECT_EQ(s.max_aspect_ratio, 4);
+  // Histogram: k <= angle < k + 1.
+  EXPECT_EQ(s.min_dihedral_histogram[0], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[1], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[2], 1u);  // 3^-
+  EXPECT_EQ(s.min_dihedral_histogram[3], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[4], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[5], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[9], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[10], 1u);
+  EXPECT_EQ(s.min_dihedral_histogram[50], 7u);
+  EXPECT_EQ(s.min_dihedral_histogram[60], 2u);
+  std::size_t total = 0;
+  for (std::size_t c : s.min_dihedral_histogram) total += c;
+  EXPECT_EQ(total, q.size());
+  EXPECT_EQ(s.min_face_angle_histogram[30], q.size());
+  EXPECT_EQ(histogram_bin(-1, 90), 0u);
+  EXPECT_EQ(histogram_bin(std::nan(""), 90), 0u);
+  EXPECT_EQ(histogram_bin(90, 90), 89u);
+}
+
+TEST(Quality, StatsOnSmallMeshOfKnownTets) {
+  TetMesh mesh;
+  const double h = 1e-3;
+  mesh.vertices = {kR0, kR1, kR2, kR3,                                     // regular
+                   {{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}},     // corner
+                   {{0, 0, 0}}, {{1, 0, h}}, {{1, 1, 0}}, {{0, 1, h}},     // sliver
+                   {{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1.0 / 3, 1.0 / 3, 1e-4}}};  // cap
+  mesh.tets = {{{0, 1, 2, 3}}, {{4, 5, 6, 7}}, {{8, 9, 10, 11}}, {{12, 13, 14, 15}}};
+  const MeshStats s = mesh_stats(mesh, mesh_quality(mesh));
+  EXPECT_EQ(s.tets, 4u);
+  EXPECT_EQ(s.vertices, 16u);
+  EXPECT_EQ(s.inverted, 0u);
+  EXPECT_NEAR(s.volume, 8.0 / 3 + 1.0 / 6 + h / 3 + 1e-4 / 6, 1e-14);
+  EXPECT_EQ(s.radius_edge_below, 0u);
+  EXPECT_EQ(s.radius_edge_bins[0], 3u);  // sqrt(6)/4, sqrt(3)/2, ~1/sqrt 2
+  EXPECT_EQ(s.radius_edge_bins[1], 0u);
+  EXPECT_EQ(s.radius_edge_bins[2], 1u);  // the cap
+  EXPECT_EQ(s.dihedral_bins[0], 2u);     // sliver and cap
+  EXPECT_EQ(s.slivers, 1u);              // the cap has R/l > 2.2
+  EXPECT_EQ(s.min_dihedral_histogram[70], 1u);  // 70.53
+  EXPECT_EQ(s.min_dihedral_histogram[54], 1u);  // 54.74
+  EXPECT_EQ(s.min_dihedral_histogram[0], 2u);
+  // Smallest face angles 60, 45, ~45 (bins 59/60 and 44/45 depending on the
+  // last bit) and, for the cap, the angle at b in face bcd between c - b =
+  // (-1, 1) and d - b = (-2/3, 1/3): (180 - atan(1/2)) - 135 ~ 18.43.
+  EXPECT_EQ(s.min_face_angle_histogram[18], 1u);
+  std::size_t faces = 0;
+  for (std::size_t c : s.min_face_angle_histogram) faces += c;
+  EXPECT_EQ(faces, 4u);
+  EXPECT_NEAR(s.max_dihedral_deg, 180, 0.5);
+}
+
+}  // namespace
+}  // namespace wqmesh
