@@ -249,4 +249,61 @@ class Mesher {
   friend class Pump;
 };
 
+/// A cell named by its sorted vertex ids.
+using TetKey = std::array<int, 4>;
+struct TetKeyHash {
+  std::size_t operator()(const TetKey& t) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (int x : t) h = (h ^ std::uint64_t(std::uint32_t(x))) * 1099511628211ull;
+    return std::size_t(h);
+  }
+};
+
+/// PUMP (pump.cpp): the inside/outside labels of cells kept as the weighted
+/// triangulation changes, the walls (input subfacets) and, per vertex, the
+/// subfacets whose presence must be kept.
+class Pump {
+ public:
+  explicit Pump(Mesher& m);
+  /// N(v) for every vertex, cell labels, walls. Called by run().
+  void prepare();
+  void run();
+  /// (smallest dihedral, vertex) for the vertices of inside tets with a
+  /// dihedral angle <= theta, worst first.
+  std::vector<std::pair<double, int>> candidates() const;
+  /// N(v)^2/9.
+  double weight_bound(int v) const;
+
+  struct Features {
+    std::vector<std::uint64_t> segments;
+    std::vector<Tri> subfacets;
+  };
+  /// The features whose presence a weight change of v must keep.
+  Features features_around(int v) const;
+  /// Sets v's weight to w; returns the smallest dihedral angle of the inside
+  /// tets around v, or -1 when w hides v or removes one of `f`.
+  double evaluate(int v, double w, const Features& f);
+
+  struct Choice {
+    double weight = 0, quality = -1, base = -1;
+  };
+  /// Chooses, and sets, the weight of v in [0, N(v)^2/9] maximising the
+  /// smallest dihedral angle around v, searching the interval at its critical
+  /// weights; keeps the old weight unless the new one is strictly better.
+  Choice pump_vertex(int v);
+
+ private:
+  double angle_of(const Tet& t) const;
+  bool is_wall(int a, int b, int c) const;
+  char label(const Tet& t);
+  double next_critical(int v, double w, double cap) const;
+  bool present(const Features& f) const;
+
+  Mesher& m_;
+  RegularTriangulation& tri_;
+  std::unordered_map<TetKey, char, TetKeyHash> labels_;
+  std::unordered_set<Tri, TriHash> walls_;
+  std::vector<std::vector<Tri>> vertex_facets_;
+};
+
 }  // namespace wqmesh::mesher

@@ -18,18 +18,10 @@ namespace wqmesh::mesher {
 
 namespace {
 
-using TetKey = std::array<int, 4>;
 TetKey key_of(Tet t) {
   std::sort(t.begin(), t.end());
   return t;
 }
-struct TetKeyHash {
-  std::size_t operator()(const TetKey& t) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (int x : t) h = (h ^ std::uint64_t(std::uint32_t(x))) * 1099511628211ull;
-    return std::size_t(h);
-  }
-};
 
 // The orthocenter z and orthoradius^2 of four weighted points.
 bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, double& z2) {
@@ -60,218 +52,219 @@ bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, doubl
 
 }  // namespace
 
-/// The state of PUMP: inside/outside labels of cells (kept as the weighted
-/// triangulation changes), the walls (input subfacets) and, per vertex, the
-/// subsegments and subfacets whose presence must be kept.
-class Pump {
- public:
-  explicit Pump(Mesher& m) : m_(m), tri_(m.tri_) {}
+Pump::Pump(Mesher& m) : m_(m), tri_(m.tri_) {}
 
-  void run() {
-    const RegularTriangulation::CellGraph g = tri_.cell_graph();
-    const std::vector<char> inside = m_.interior_labels(g);
-    for (std::size_t i = 0; i < g.cells.size(); ++i) labels_[key_of(g.cells[i])] = inside[i];
-    vertex_facets_.assign(m_.verts_.size(), {});
-    for (const Subfacet& h : m_.subfacets()) {
-      const Tri s = sorted(h.v);
-      if (!m_.dom_.is_box_facet(h.facet)) walls_.insert(s);
-      for (int x : h.v) vertex_facets_[x].push_back(s);
-    }
-    // Candidates: vertices of inside tets with a dihedral angle <= theta,
-    // worst first.
-    std::vector<std::pair<double, int>> cand;
-    for (std::size_t i = 0; i < g.cells.size(); ++i) {
-      if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
-      const double a = angle_of(g.cells[i]);
-      if (a <= m_.opt_.theta_deg)
-        for (int v : g.cells[i]) cand.push_back({a, v});
-    }
-    for (int pass = 0; pass < m_.opt_.max_pump_passes && !cand.empty(); ++pass) {
-      std::sort(cand.begin(), cand.end());
-      std::vector<char> seen(m_.verts_.size(), 0);
-      std::vector<std::pair<double, int>> next;
-      bool improved = false;
-      for (const auto& [a, v] : cand) {
-        if (seen[v]) continue;
-        seen[v] = 1;
-        if (!m_.tick()) return;
-        const double w = m_.nn_[v] * m_.nn_[v] / 9;
-        if (m_.encroaches_expanded_ball(tri_.point(v), w)) continue;
-        if (pump_vertex(v, w)) improved = true;
-        // Slivers left or made around v are visited in the next pass.
-        std::vector<Tet> star;
-        tri_.incident_cells(v, star);
-        for (const Tet& t : star) {
-          if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
-          const double b = angle_of(t);
-          if (b <= m_.opt_.theta_deg)
-            for (int x : t) next.push_back({b, x});
-        }
+void Pump::prepare() {
+  // N(v), the nearest-neighbour distance in the unweighted Del V at the end
+  // of REFINE; it bounds the weights and does not change when they do.
+  m_.nn_.resize(m_.verts_.size());
+  for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
+  const RegularTriangulation::CellGraph g = tri_.cell_graph();
+  const std::vector<char> inside = m_.interior_labels(g);
+  labels_.clear();
+  for (std::size_t i = 0; i < g.cells.size(); ++i) labels_[key_of(g.cells[i])] = inside[i];
+  walls_.clear();
+  vertex_facets_.assign(m_.verts_.size(), {});
+  for (const Subfacet& h : m_.subfacets()) {
+    const Tri s = sorted(h.v);
+    if (!m_.dom_.is_box_facet(h.facet)) walls_.insert(s);
+    for (int x : h.v) vertex_facets_[x].push_back(s);
+  }
+}
+
+std::vector<std::pair<double, int>> Pump::candidates() const {
+  // Vertices of inside tets with a dihedral angle <= theta, worst first.
+  std::vector<std::pair<double, int>> cand;
+  for (const auto& [key, inside] : labels_) {
+    if (!inside || key[0] == kInfinite || !tri_.is_cell(key)) continue;
+    const double a = angle_of(key);
+    if (a <= m_.opt_.theta_deg)
+      for (int v : key) cand.push_back({a, v});
+  }
+  std::sort(cand.begin(), cand.end());
+  return cand;
+}
+
+double Pump::weight_bound(int v) const { return m_.nn_[v] * m_.nn_[v] / 9; }
+
+void Pump::run() {
+  prepare();
+  std::vector<std::pair<double, int>> cand = candidates();
+  for (int pass = 0; pass < m_.opt_.max_pump_passes && !cand.empty(); ++pass) {
+    std::sort(cand.begin(), cand.end());
+    std::vector<char> seen(m_.verts_.size(), 0);
+    std::vector<std::pair<double, int>> next;
+    bool improved = false;
+    for (const auto& [a, v] : cand) {
+      if (seen[v]) continue;
+      seen[v] = 1;
+      if (!m_.tick()) return;
+      if (m_.encroaches_expanded_ball(tri_.point(v), weight_bound(v))) continue;
+      const Choice c = pump_vertex(v);
+      if (c.quality > c.base) improved = true;
+      // Slivers left or made around v are visited in the next pass.
+      std::vector<Tet> star;
+      tri_.incident_cells(v, star);
+      for (const Tet& t : star) {
+        if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
+        const double b = angle_of(t);
+        if (b <= m_.opt_.theta_deg)
+          for (int x : t) next.push_back({b, x});
       }
-      if (!improved) break;
-      cand.swap(next);
     }
-    for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
+    if (!improved) break;
+    cand.swap(next);
   }
+  for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
+}
 
- private:
-  double angle_of(const Tet& t) const {
-    return tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3])).min_dihedral_deg;
-  }
+double Pump::angle_of(const Tet& t) const {
+  return tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3])).min_dihedral_deg;
+}
 
-  bool is_wall(int a, int b, int c) const { return walls_.count(sorted({{a, b, c}})) > 0; }
+bool Pump::is_wall(int a, int b, int c) const { return walls_.count(sorted({{a, b, c}})) > 0; }
 
-  // The label of a cell: inside (1) or outside (0). Cells made by a weight
-  // change take the label of their neighbour across a facet, flipped when the
-  // facet is a wall; the changed region is surrounded by cells known before.
-  char label(const Tet& t) {
-    if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
-    const auto it = labels_.find(key_of(t));
-    if (it != labels_.end()) return it->second;
-    std::vector<Tet> todo{t};
-    for (int round = 0; round < 64 && !todo.empty(); ++round) {
-      std::vector<Tet> later;
-      for (const Tet& c : todo) {
-        if (labels_.count(key_of(c))) continue;
-        bool done = false;
-        for (int k = 0; k < 4 && !done; ++k) {
-          const int a = c[(k + 1) % 4], b = c[(k + 2) % 4], d = c[(k + 3) % 4];
-          if (a == kInfinite || b == kInfinite || d == kInfinite) continue;
-          Tet c1, c2;
-          if (!tri_.facet_cells(a, b, d, c1, c2)) continue;
-          const Tet& other = key_of(c1) == key_of(c) ? c2 : c1;
-          if (m_.flat_on_facet(other)) continue;  // its label says nothing
-          char lo;
-          if (std::count(other.begin(), other.end(), kInfinite)) {
-            lo = 0;
-          } else {
-            const auto jt = labels_.find(key_of(other));
-            if (jt == labels_.end()) {
-              later.push_back(other);
-              continue;
-            }
-            lo = jt->second;
+char Pump::label(const Tet& t) {
+  // Inside (1) or outside (0). Cells made by a weight change take the label
+  // of a neighbour across a facet, flipped when the facet is a wall; the
+  // changed region is surrounded by cells known before.
+  if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
+  const auto it = labels_.find(key_of(t));
+  if (it != labels_.end()) return it->second;
+  std::vector<Tet> todo{t};
+  for (int round = 0; round < 64 && !todo.empty(); ++round) {
+    std::vector<Tet> later;
+    for (const Tet& c : todo) {
+      if (labels_.count(key_of(c))) continue;
+      bool done = false;
+      for (int k = 0; k < 4 && !done; ++k) {
+        const int a = c[(k + 1) % 4], b = c[(k + 2) % 4], d = c[(k + 3) % 4];
+        if (a == kInfinite || b == kInfinite || d == kInfinite) continue;
+        Tet c1, c2;
+        if (!tri_.facet_cells(a, b, d, c1, c2)) continue;
+        const Tet& other = key_of(c1) == key_of(c) ? c2 : c1;
+        if (m_.flat_on_facet(other)) continue;  // its label says nothing
+        char lo;
+        if (std::count(other.begin(), other.end(), kInfinite)) {
+          lo = 0;
+        } else {
+          const auto jt = labels_.find(key_of(other));
+          if (jt == labels_.end()) {
+            later.push_back(other);
+            continue;
           }
-          labels_[key_of(c)] = is_wall(a, b, d) ? char(1 - lo) : lo;
-          done = true;
+          lo = jt->second;
         }
-        if (!done) later.push_back(c);
+        labels_[key_of(c)] = is_wall(a, b, d) ? char(1 - lo) : lo;
+        done = true;
       }
-      // Retry the cell itself after its neighbours.
-      if (!labels_.count(key_of(t))) later.push_back(t);
-      todo.swap(later);
+      if (!done) later.push_back(c);
     }
-    const auto jt = labels_.find(key_of(t));
-    return jt != labels_.end() ? jt->second : 0;
+    if (!labels_.count(key_of(t))) later.push_back(t);  // retry after its neighbours
+    todo.swap(later);
   }
+  const auto jt = labels_.find(key_of(t));
+  return jt != labels_.end() ? jt->second : 0;
+}
 
-  // Whether the features around v are all in the triangulation.
-  bool conforming(const std::vector<std::uint64_t>& segs, const std::vector<Tri>& facets) const {
-    for (std::uint64_t k : segs) {
-      const Subsegment& s = m_.segs_.at(k);
-      if (!tri_.is_edge(s.a, s.b)) return false;
-    }
-    for (const Tri& t : facets)
-      if (!tri_.is_facet(t[0], t[1], t[2])) return false;
-    return true;
+Pump::Features Pump::features_around(int v) const {
+  // The subsegments and subfacets at v and at its neighbours: a weight change
+  // of v only changes its star, so only these can disappear.
+  std::vector<int> ring;
+  tri_.adjacent_vertices(v, ring);
+  ring.push_back(v);
+  Features f;
+  for (int x : ring) {
+    for (std::uint64_t k : m_.vertex_segs_[x]) f.segments.push_back(k);
+    for (const Tri& t : vertex_facets_[x]) f.subfacets.push_back(t);
   }
+  std::sort(f.segments.begin(), f.segments.end());
+  f.segments.erase(std::unique(f.segments.begin(), f.segments.end()), f.segments.end());
+  std::sort(f.subfacets.begin(), f.subfacets.end());
+  f.subfacets.erase(std::unique(f.subfacets.begin(), f.subfacets.end()), f.subfacets.end());
+  return f;
+}
 
-  // The smallest dihedral angle of the inside tets around v at weight w, or
-  // -1 when the weight cannot be taken (hidden, or a feature disappears).
-  double evaluate(int v, double w, const std::vector<std::uint64_t>& segs, const std::vector<Tri>& facets) {
-    if (!tri_.set_weight(v, w)) return -1;
-    if (!conforming(segs, facets)) return -1;
-    std::vector<Tet> star;
-    tri_.incident_cells(v, star);
-    double worst = 180;
-    for (const Tet& t : star)
-      if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
-    return worst;
+bool Pump::present(const Features& f) const {
+  for (std::uint64_t k : f.segments) {
+    const Subsegment& s = m_.segs_.at(k);
+    if (!tri_.is_edge(s.a, s.b)) return false;
   }
+  for (const Tri& t : f.subfacets)
+    if (!tri_.is_facet(t[0], t[1], t[2])) return false;
+  return true;
+}
 
+double Pump::evaluate(int v, double w, const Features& f) {
+  if (!tri_.set_weight(v, w)) return -1;
+  // The features around v before and after the change: a star that grows
+  // swallows cells whose facets join the new neighbours of v.
+  if (!present(f) || !present(features_around(v))) return -1;
+  std::vector<Tet> star;
+  tri_.incident_cells(v, star);
+  double worst = 180;
+  for (const Tet& t : star)
+    if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
+  return worst;
+}
+
+double Pump::next_critical(int v, double w, double cap) const {
   // The next weight above w at which the star of v changes: a cell across a
   // facet of v's link joins the star when v's power distance to its
   // orthosphere becomes negative.
-  double next_critical(int v, double w, double cap) const {
-    std::vector<Tet> star;
-    tri_.incident_cells(v, star);
-    double next = cap;
-    const Point3& pv = tri_.point(v);
-    for (const Tet& t : star) {
-      int i = 0;
-      while (t[i] != v) ++i;
-      const int a = t[(i + 1) % 4], b = t[(i + 2) % 4], c = t[(i + 3) % 4];
-      if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
-      Tet c1, c2;
-      if (!tri_.facet_cells(a, b, c, c1, c2)) continue;
-      const Tet& other = std::count(c1.begin(), c1.end(), v) ? c2 : c1;
-      if (std::count(other.begin(), other.end(), kInfinite)) continue;
-      Point3 z;
-      double z2;
-      if (!orthosphere(tri_, other, z, z2)) continue;
-      const double critical = dist2(pv, z) - z2;
-      if (critical > w && critical < next) next = critical;
-    }
-    return next;
+  std::vector<Tet> star;
+  tri_.incident_cells(v, star);
+  double next = cap;
+  const Point3& pv = tri_.point(v);
+  for (const Tet& t : star) {
+    int i = 0;
+    while (t[i] != v) ++i;
+    const int a = t[(i + 1) % 4], b = t[(i + 2) % 4], c = t[(i + 3) % 4];
+    if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
+    Tet c1, c2;
+    if (!tri_.facet_cells(a, b, c, c1, c2)) continue;
+    const Tet& other = std::count(c1.begin(), c1.end(), v) ? c2 : c1;
+    if (std::count(other.begin(), other.end(), kInfinite)) continue;
+    Point3 z;
+    double z2;
+    if (!orthosphere(tri_, other, z, z2)) continue;
+    const double critical = dist2(pv, z) - z2;
+    if (critical > w && critical < next) next = critical;
   }
+  return next;
+}
 
-  bool pump_vertex(int v, double wmax) {
-    // The features whose presence is checked: subsegments and subfacets at v
-    // and at its neighbours (a weight change of v only changes its star).
-    std::vector<int> ring;
-    tri_.adjacent_vertices(v, ring);
-    ring.push_back(v);
-    std::vector<std::uint64_t> segs;
-    std::vector<Tri> facets;
-    for (int x : ring) {
-      for (std::uint64_t k : m_.vertex_segs_[x]) segs.push_back(k);
-      for (const Tri& t : vertex_facets_[x]) facets.push_back(t);
+Pump::Choice Pump::pump_vertex(int v) {
+  const double wmax = weight_bound(v);
+  const Features f = features_around(v);
+  const double w0 = tri_.weight(v);
+  Choice choice;
+  choice.base = evaluate(v, w0, f);
+  choice.quality = choice.base;
+  choice.weight = w0;
+  // Walk [0, wmax] from one critical weight to the next; between two of them
+  // the star, hence the smallest angle, does not change: one sample each.
+  double cw = 0;
+  evaluate(v, cw, f);
+  for (int step = 0; step < 256; ++step) {
+    const double c = next_critical(v, cw, wmax);
+    const double sample = 0.5 * (cw + c);
+    const double q = evaluate(v, sample, f);
+    if (q > choice.quality) {
+      choice.quality = q;
+      choice.weight = sample;
     }
-    std::sort(segs.begin(), segs.end());
-    segs.erase(std::unique(segs.begin(), segs.end()), segs.end());
-    std::sort(facets.begin(), facets.end());
-    facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
-
-    const double w0 = tri_.weight(v);
-    const double base = evaluate(v, w0, segs, facets);
-    double best = base, best_w = w0;
-    // Walk the weight interval [0, wmax] from one critical weight to the next;
-    // the star, hence the smallest angle, is constant between two of them.
-    double cw = 0;
-    evaluate(v, cw, segs, facets);
-    for (int step = 0; step < 256; ++step) {
-      const double c = next_critical(v, cw, wmax);
-      const double sample = 0.5 * (cw + c);
-      const double q = evaluate(v, sample, segs, facets);
-      if (q > best) {
-        best = q;
-        best_w = sample;
-      }
-      if (c >= wmax) break;
-      cw = c + 1e-9 * wmax;
-      if (cw >= wmax) break;
-      if (evaluate(v, cw, segs, facets) < 0) {
-        // A weight past a critical one that breaks conformity: the rest of
-        // the interval is still searched from there.
-      }
-    }
-    evaluate(v, best_w, segs, facets);
-    return best > base;
+    if (c >= wmax) break;
+    cw = c + 1e-9 * wmax;  // just past the critical weight
+    if (cw >= wmax) break;
+    evaluate(v, cw, f);
   }
-
-  Mesher& m_;
-  RegularTriangulation& tri_;
-  std::unordered_map<TetKey, char, TetKeyHash> labels_;
-  std::unordered_set<Tri, TriHash> walls_;
-  std::vector<std::vector<Tri>> vertex_facets_;
-};
+  evaluate(v, choice.weight, f);
+  return choice;
+}
 
 void Mesher::pump() {
   phase_ = Phase::pump;
-  // N(v), the nearest-neighbour distance in the unweighted Del V at the end
-  // of REFINE; it bounds the weights and does not change when they do.
-  nn_.resize(verts_.size());
-  for (std::size_t v = 0; v < verts_.size(); ++v) nn_[v] = nearest_neighbour(static_cast<int>(v));
   Pump(*this).run();
 }
 
