@@ -179,11 +179,14 @@ class Mesher {
   int insert(const Insertion& ins, int rule) {
     const int id = insert(ins);
     if (id >= 0) ++rule_count[rule];
+    if (trace_) trace(ins, rule, id);
     return id;
   }
+  /// With WQMESH_TRACE set in the environment, every insertion is printed on
+  /// stderr (rule, where, the subsegment split): a tool for developers.
+  void trace(const Insertion& ins, int rule, int id) const;
 
  private:
-  friend struct MesherAccess;
   // subcomplex.cpp: subsegments, subfacets, SPLITE, SPLITF, encroachment.
   void add_segment(const Subsegment& s);
   std::vector<std::uint64_t> shield_keys(int sector) const;
@@ -240,6 +243,7 @@ class Mesher {
   void for_balls_near(const Point3& x, double reach, F&& f) const;
   std::vector<double> nn_;  ///< N(v) at the end of REFINE
   Phase phase_ = Phase::initialize;
+  bool trace_ = false;
   bool protecting_ = false;  ///< protecting balls exist (REFINE)
   std::deque<std::uint64_t> seg_queue_;
   std::deque<Subfacet> facet_queue_;

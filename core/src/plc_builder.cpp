@@ -17,6 +17,7 @@
 #include "cgal_types.h"
 #include "exact.h"
 #include "validation.h"
+#include "hashing.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
@@ -36,19 +37,6 @@ struct UnionFind {
     a = find(a);
     b = find(b);
     if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
-
-struct PointHash {
-  std::size_t operator()(const Point3& p) const {
-    std::size_t h = 1469598103934665603ull;
-    for (double x : p) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
-      h ^= h >> 31;
-    }
-    return h;
   }
 };
 

@@ -11,24 +11,11 @@
 #include <string>
 #include <unordered_map>
 
+#include "hashing.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
 namespace {
-
-/// Hash of a point given by its coordinates (with -0 already folded into +0).
-struct PointHash {
-  std::size_t operator()(const Point3& p) const {
-    std::size_t h = 1469598103934665603ull;
-    for (double x : p) {
-      std::uint64_t bits;
-      std::memcpy(&bits, &x, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
-      h ^= h >> 29;
-    }
-    return h;
-  }
-};
 
 /// Gives identical corners one index.
 class CornerMerger {

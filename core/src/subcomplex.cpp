@@ -4,6 +4,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 #include "mesher_state.h"
@@ -12,8 +14,21 @@ namespace wqmesh::mesher {
 
 Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressCallback& progress)
     : dom_(domain), opt_(options), progress_(progress) {
+  trace_ = std::getenv("WQMESH_TRACE") != nullptr;
   facet_dt_.resize(domain.p.facets.size());
   vertex_sectors_.assign(domain.p.vertices.size(), {});
+}
+
+void Mesher::trace(const Insertion& ins, int rule, int id) const {
+  double len = 0;
+  if (ins.has_segment) {
+    const int a = int(ins.split_segment >> 32), b = int(ins.split_segment & 0xFFFFFFFFu);
+    len = std::sqrt(dist2(tri_.point(a), tri_.point(b)));
+  }
+  static const char* kOn[] = {"vertex", "edge", "facet", "free"};
+  std::fprintf(stderr, "wqmesh trace: rule %d -> %d on %s %d at (%.17g, %.17g, %.17g) split %s length %g\n", rule,
+               id, kOn[int(ins.on)], ins.element, ins.p[0], ins.p[1], ins.p[2],
+               ins.has_segment ? (ins.sector >= 0 ? "shield" : "subsegment") : "-", len);
 }
 
 // ---- bookkeeping -----------------------------------------------------------------

@@ -351,13 +351,26 @@ const char* kWedge =
     "OFF\n6 5 0\n0 0 0\n1 0 0\n1 0.2 0\n0 0 1\n1 0 1\n1 0.2 1\n"
     "3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 1 2 5 4\n4 2 0 3 5\n";
 
-TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex) {
-  const Input in = from_off(kWedge);
-  const mesher::Domain dom(in.plc, in.analysis);
-  MeshOptions o;
+// The mesher's state on an input after INITIALIZE (and CONFORM when asked);
+// the members outlive the Mesher, which refers to them.
+struct Stage {
+  Input in;
+  mesher::Domain dom;
+  MeshOptions options;
   ProgressCallback none;
-  mesher::Mesher m(dom, o, none);
-  m.initialize();
+  mesher::Mesher m;
+  Stage(const Input& input, bool conformed)
+      : in(input), dom(in.plc, in.analysis), m(dom, options, none) {
+    m.initialize();
+    if (conformed) m.conform();
+  }
+};
+
+TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex) {
+  Stage st(from_off(kWedge), false);
+  const Input& in = st.in;
+  const mesher::Domain& dom = st.dom;
+  mesher::Mesher& m = st.m;
   ASSERT_FALSE(in.analysis.sharp_vertices.empty());
   for (std::size_t i = 0; i < in.analysis.sharp_vertices.size(); ++i) {
     const int u = in.analysis.sharp_vertices[i];
@@ -389,12 +402,10 @@ TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex)
 }
 
 TEST(MesherRules, SplitePutsTheMidpointOrTheArcMidpoint) {
-  const Input in = from_off(kWedge);
-  const mesher::Domain dom(in.plc, in.analysis);
-  MeshOptions o;
-  ProgressCallback none;
-  mesher::Mesher m(dom, o, none);
-  m.initialize();
+  Stage st(from_off(kWedge), false);
+  const Input& in = st.in;
+  const mesher::Domain& dom = st.dom;
+  mesher::Mesher& m = st.m;
   // A point just beside the midpoint of a non-protected subsegment
   // encroaches it: ENCROACH returns that midpoint (section 4.3, case 2).
   for (const auto& [k, s] : m.subsegments()) {
@@ -430,13 +441,10 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
   // ENCROACH(c) (section 4.3) returns c when c encroaches no subsegment (on or
   // inside its diametric ball) and no subfacet (strictly inside); otherwise a
   // point splitting a feature. Checked against every feature, on a grid of c.
-  const Input in = from_off(kWedge);
-  const mesher::Domain dom(in.plc, in.analysis);
-  MeshOptions o;
-  ProgressCallback none;
-  mesher::Mesher m(dom, o, none);
-  m.initialize();
-  m.conform();
+  Stage st(from_off(kWedge), true);
+  const Input& in = st.in;
+  const mesher::Domain& dom = st.dom;
+  mesher::Mesher& m = st.m;
   ASSERT_TRUE(m.conforms());
   const auto& tri = m.triangulation();
   const std::vector<mesher::Subfacet> facets = m.subfacets();
@@ -476,13 +484,10 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
 }
 
 TEST(MesherRules, SharpSubsegmentsGetDoubledDiametricBalls) {
-  const Input in = from_off(kWedge);
-  const mesher::Domain dom(in.plc, in.analysis);
-  MeshOptions o;
-  ProgressCallback none;
-  mesher::Mesher m(dom, o, none);
-  m.initialize();
-  m.conform();
+  Stage st(from_off(kWedge), true);
+  const Input& in = st.in;
+  const mesher::Domain& dom = st.dom;
+  mesher::Mesher& m = st.m;
   std::size_t sharp = 0;
   for (const auto& [k, s] : m.subsegments()) {
     if (!s.sharp) continue;
