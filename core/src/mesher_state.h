@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
@@ -180,8 +181,11 @@ class Mesher {
     const int id = insert(ins);
     if (id >= 0) ++rule_count[rule];
     if (trace_) trace(ins, rule, id);
+    if (observer) observer(ins, rule, id);
     return id;
   }
+  /// Called after every insertion by a rule (tests watch the rules with it).
+  std::function<void(const Insertion&, int rule, int id)> observer;
   /// With WQMESH_TRACE set in the environment, every insertion is printed on
   /// stderr (rule, where, the subsegment split): a tool for developers.
   void trace(const Insertion& ins, int rule, int id) const;

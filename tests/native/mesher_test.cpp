@@ -552,3 +552,72 @@ TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
 
 }  // namespace
 }  // namespace wqmesh
+
+namespace wqmesh {
+namespace {
+
+TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
+  // Watches every insertion of CONFORM and REFINE on a model that exercises
+  // all the rules, and checks each point against the rule that put it:
+  // SPLITE puts the midpoint of a subsegment (or the SOS point on the arc of
+  // a vertex ball); SPLITF the circumcenter of a subfacet, in its facet, which
+  // encroaches no subsegment; rule 6 a free circumcenter outside every
+  // protecting ball that encroaches no subsegment or subfacet.
+  const auto files = models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"});
+  const auto examples = models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off"});
+  const std::string file = !files.empty() ? files[0] : !examples.empty() ? examples[0] : "";
+  if (file.empty()) GTEST_SKIP() << "no model";
+  const Input in = load(file);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  std::array<int, 8> seen{};
+  m.observer = [&](const mesher::Insertion& ins, int rule, int id) {
+    if (id < 0) return;
+    ++seen[rule];
+    const auto& tri = m.triangulation();
+    if (ins.has_segment) {
+      const int a = int(ins.split_segment >> 32), b = int(ins.split_segment & 0xFFFFFFFFu);
+      if (ins.sector >= 0) {
+        const int u = m.vertices()[a].ball;
+        ASSERT_GE(u, 0);
+        const double r = dom.ball_radius[u];
+        EXPECT_NEAR(std::sqrt(mesher::dist2(ins.p, dom.p.vertices[u])), r, 1e-9 * r);
+        EXPECT_NEAR(mesher::dist2(ins.p, tri.point(a)), mesher::dist2(ins.p, tri.point(b)), 1e-9 * r * r);
+      } else {
+        EXPECT_EQ(ins.p, mesher::midpoint(tri.point(a), tri.point(b)));
+      }
+      return;
+    }
+    // Not a subsegment split: the point encroaches no subsegment.
+    for (const auto& [k, s] : m.subsegments()) {
+      if (s.in_ball || s.a == id || s.b == id) continue;
+      const Point3 pa = tri.point(s.a), pb = tri.point(s.b);
+      EXPECT_GT(mesher::dist2(ins.p, mesher::midpoint(pa, pb)), 0.25 * mesher::dist2(pa, pb))
+          << "rule " << rule << " put a point that encroaches a subsegment";
+    }
+    if (ins.on == mesher::On::facet) {
+      EXPECT_TRUE(dom.inside_facet(ins.element, ins.p)) << "rule " << rule;
+      const auto& fr = dom.frames[ins.element];
+      EXPECT_LE(std::fabs(dot(sub(ins.p, fr.origin), fr.n)), 1e-9 * diag(in.plc));
+    }
+    if (rule == 6 && ins.on == mesher::On::free) {
+      for (const ProtectingBall& b : m.protecting_balls())
+        EXPECT_GT(mesher::dist2(ins.p, b.center), b.radius * b.radius) << "rule 6 inside a protecting ball";
+    }
+  };
+  m.initialize();
+  m.conform();
+  m.refine();
+  EXPECT_TRUE(m.conforms());
+  EXPECT_GT(seen[1], 0);
+  EXPECT_GT(seen[2], 0);
+  EXPECT_GT(seen[6], 0);
+  std::printf("[ rules    ] points by rule 0..7:");
+  for (int n : seen) std::printf(" %d", n);
+  std::printf("\n");
+}
+
+}  // namespace
+}  // namespace wqmesh
