@@ -235,6 +235,7 @@ class Mesher {
   std::vector<MVertex> verts_;
   std::unordered_map<std::uint64_t, Subsegment> segs_;
   std::vector<std::vector<std::uint64_t>> vertex_segs_;
+  std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
   std::vector<PlanarDelaunay> facet_dt_;
   std::vector<Sector> sectors_;
   std::vector<std::vector<int>> vertex_sectors_;  ///< per P vertex

@@ -41,10 +41,15 @@ bool Mesher::tick() {
 
 void Mesher::enqueue_around(int v) {
   if (phase_ == Phase::initialize) return;
+  // The star of v gives both its new cells and its neighbours.
+  std::vector<Tet> cells;
+  tri_.incident_cells(v, cells);
   std::vector<int> ring;
-  tri_.adjacent_vertices(v, ring);
-  ring.push_back(v);
+  for (const Tet& c : cells)
+    for (int x : c)
+      if (x != kInfinite) ring.push_back(x);
   std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   auto in_ring = [&](int x) { return std::binary_search(ring.begin(), ring.end(), x); };
   // Subsegments: the new ones, and those the new vertex may encroach.
   for (int x : ring)
@@ -69,8 +74,6 @@ void Mesher::enqueue_around(int v) {
     }
   }
   if (phase_ == Phase::refine) {
-    std::vector<Tet> cells;
-    tri_.incident_cells(v, cells);
     for (const Tet& c : cells)
       if (std::find(c.begin(), c.end(), kInfinite) == c.end()) tet_queue_.push_back(c);
   }

@@ -38,6 +38,10 @@ void Mesher::add_segment(const Subsegment& s) {
   segs_[k] = s;
   vertex_segs_[s.a].push_back(k);
   vertex_segs_[s.b].push_back(k);
+  if (s.sector >= 0) {
+    if (sector_segs_.size() <= std::size_t(s.sector)) sector_segs_.resize(s.sector + 1);
+    sector_segs_[s.sector].push_back(k);
+  }
   seg_queue_.push_back(k);
 }
 
@@ -120,6 +124,10 @@ int Mesher::insert(const Insertion& ins) {
         auto& list = vertex_segs_[end];
         list.erase(std::remove(list.begin(), list.end(), ins.split_segment), list.end());
       }
+      if (old.sector >= 0) {
+        auto& list = sector_segs_[old.sector];
+        list.erase(std::remove(list.begin(), list.end(), ins.split_segment), list.end());
+      }
       Subsegment left = old, right = old;
       left.b = id;
       right.a = id;
@@ -141,13 +149,8 @@ int Mesher::insert(const Insertion& ins) {
 }
 
 std::vector<std::uint64_t> Mesher::shield_keys(int sector) const {
-  // The shield subsegments of a sector: walk its arc from the point at angle
-  // 0 through the subsegments that belong to the sector.
-  std::vector<std::uint64_t> keys;
-  const Sector& s = sectors_[sector];
-  (void)s;
-  for (const auto& [k, g] : segs_)
-    if (g.sector == sector) keys.push_back(k);
+  if (std::size_t(sector) >= sector_segs_.size()) return {};
+  std::vector<std::uint64_t> keys = sector_segs_[sector];
   std::sort(keys.begin(), keys.end());
   return keys;
 }
@@ -165,7 +168,6 @@ bool in_diametric_ball(const Point3& x, const Point3& a, const Point3& b) {
 
 bool Mesher::segment_encroached(const Subsegment& e) const {
   if (e.in_ball) return false;
-  if (!tri_.is_edge(e.a, e.b)) return true;  // missing: a vertex lies in every circumball
   const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
   // The points on the sphere of a vertex ball do not encroach its shield
   // subsegments (a choice: at a sharp edge of dihedral angle below 45 degrees
@@ -173,14 +175,10 @@ bool Mesher::segment_encroached(const Subsegment& e) const {
   // each other after every SOS split, forever). What the shields are for,
   // the shield subfacets in Del V, rule 2 checks directly.
   const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
-  std::vector<Tet> cells;
-  tri_.incident_cells(e.a, cells);
-  for (const Tet& c : cells) {
-    if (std::find(c.begin(), c.end(), e.b) == c.end()) continue;
-    for (int x : c)
-      if (x != kInfinite && x != e.a && x != e.b && verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b))
-        return true;
-  }
+  std::vector<int> ring;
+  if (!tri_.edge_ring(e.a, e.b, ring)) return true;  // missing: a vertex lies in every circumball
+  for (int x : ring)
+    if (x != kInfinite && verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b)) return true;
   return false;
 }
 

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "triangulation.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -176,6 +177,23 @@ void RegularTriangulation::adjacent_vertices(int v, std::vector<int>& out) const
   std::vector<Rt::Vertex_handle> vs;
   impl_->rt.finite_adjacent_vertices(impl_->handle(v), std::back_inserter(vs));
   for (const Rt::Vertex_handle& u : vs) out.push_back(u->info());
+}
+
+bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out) const {
+  out.clear();
+  Rt::Cell_handle c;
+  int i, j;
+  if (!impl_->rt.is_edge(impl_->handle(a), impl_->handle(b), c, i, j)) return false;
+  auto cell = impl_->rt.incident_cells(c, i, j), done = cell;
+  do {
+    for (int k = 0; k < 4; ++k) {
+      const Rt::Vertex_handle v = cell->vertex(k);
+      if (v != c->vertex(i) && v != c->vertex(j)) out.push_back(impl_->id_of(v));
+    }
+  } while (++cell != done);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return true;
 }
 
 bool RegularTriangulation::facet_cells(int a, int b, int c, Tet& first, Tet& second) const {

@@ -58,6 +58,9 @@ class RegularTriangulation {
   void incident_cells(int v, std::vector<Tet>& out) const;
   /// The finite vertices adjacent to v.
   void adjacent_vertices(int v, std::vector<int>& out) const;
+  /// The vertices (kInfinite included) of the cells around edge ab, other
+  /// than a and b. Returns false when ab is not an edge.
+  bool edge_ring(int a, int b, std::vector<int>& out) const;
   /// The two cells sharing triangle abc (either may hold kInfinite).
   /// Returns false when abc is not a facet of the triangulation.
   bool facet_cells(int a, int b, int c, Tet& first, Tet& second) const;
