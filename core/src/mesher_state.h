@@ -223,7 +223,7 @@ class Mesher {
   bool process_queues(bool refine_phase);  ///< rules 1-2 / 4-6; false if stopped
   bool rule3();
   bool rule7_pass();
-  bool check_tet(const Tet& t);
+  bool check_tet(const Tet& t, CellRef ref);
   void make_protecting_balls();  ///< end of CONFORM (section 4.3)
   bool tick();  ///< progress; false when cancelled
   std::vector<char> interior_labels(const RegularTriangulation::CellGraph& g) const;
@@ -252,7 +252,7 @@ class Mesher {
   bool protecting_ = false;  ///< protecting balls exist (REFINE)
   std::deque<std::uint64_t> seg_queue_;
   std::deque<Subfacet> facet_queue_;
-  std::deque<Tet> tet_queue_;
+  std::deque<std::pair<Tet, CellRef>> tet_queue_;
   std::size_t inserted_ = 0, steps_ = 0;
   std::string stop_reason_;
   friend class Pump;

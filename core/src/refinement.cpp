@@ -43,7 +43,8 @@ void Mesher::enqueue_around(int v) {
   if (phase_ == Phase::initialize) return;
   // The star of v gives both its new cells and its neighbours.
   std::vector<Tet> cells;
-  tri_.incident_cells(v, cells);
+  std::vector<CellRef> refs;
+  tri_.incident_cells(v, cells, &refs);
   std::vector<int> ring;
   for (const Tet& c : cells)
     for (int x : c)
@@ -73,10 +74,10 @@ void Mesher::enqueue_around(int v) {
           facet_queue_.push_back({f, t});
     }
   }
-  if (phase_ == Phase::refine) {
-    for (const Tet& c : cells)
-      if (std::find(c.begin(), c.end(), kInfinite) == c.end()) tet_queue_.push_back(c);
-  }
+  if (phase_ == Phase::refine)
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end())
+        tet_queue_.push_back({cells[i], refs[i]});
 }
 
 bool Mesher::process_queues(bool refine_phase) {
@@ -112,9 +113,9 @@ bool Mesher::process_queues(bool refine_phase) {
       continue;
     }
     if (refine_phase && !tet_queue_.empty()) {
-      const Tet t = tet_queue_.front();
+      const auto [t, ref] = tet_queue_.front();
       tet_queue_.pop_front();
-      if (check_tet(t)) tick();
+      if (check_tet(t, ref)) tick();
       continue;
     }
     break;
@@ -122,11 +123,11 @@ bool Mesher::process_queues(bool refine_phase) {
   return stop_reason_.empty();
 }
 
-bool Mesher::check_tet(const Tet& t) {
+bool Mesher::check_tet(const Tet& t, CellRef ref) {
   // Rule 6: a tet with circumradius-edge ratio above rho0 (or, beyond the
   // paper, circumradius above max_size) is split at its circumcenter z unless
   // z lies on or inside a protecting ball; ENCROACH(z) decides the point.
-  if (!tri_.is_cell(t)) return false;
+  if (!tri_.is_cell(t, ref)) return false;
   const Point3 &a = tri_.point(t[0]), &b = tri_.point(t[1]), &c = tri_.point(t[2]), &d = tri_.point(t[3]);
   double r2;
   const Point3 z = circumcenter(a, b, c, d, r2);
@@ -403,7 +404,7 @@ void Mesher::refine() {
   for (const auto& [k, s] : segs_) seg_queue_.push_back(k);
   std::sort(seg_queue_.begin(), seg_queue_.end());
   for (const Subfacet& h : subfacets()) facet_queue_.push_back(h);
-  for (const Tet& t : tri_.finite_cells()) tet_queue_.push_back(t);
+  for (const Tet& t : tri_.finite_cells()) tet_queue_.push_back({t, nullptr});
   if (!process_queues(true)) return;
   if (!opt_.pump) return;
   for (int pass = 0; pass < 100 && stop_reason_.empty(); ++pass)

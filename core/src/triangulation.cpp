@@ -165,11 +165,30 @@ std::vector<Tet> RegularTriangulation::finite_cells() const {
   return out;
 }
 
-void RegularTriangulation::incident_cells(int v, std::vector<Tet>& out) const {
+void RegularTriangulation::incident_cells(int v, std::vector<Tet>& out, std::vector<CellRef>* refs) const {
   out.clear();
+  if (refs) refs->clear();
   std::vector<Rt::Cell_handle> cells;
   impl_->rt.incident_cells(impl_->handle(v), std::back_inserter(cells));
-  for (const Rt::Cell_handle& c : cells) out.push_back(impl_->tet_of(c));
+  for (const Rt::Cell_handle& c : cells) {
+    out.push_back(impl_->tet_of(c));
+    if (refs) refs->push_back(static_cast<CellRef>(&*c));
+  }
+}
+
+bool RegularTriangulation::is_cell(const Tet& t, CellRef ref) const {
+  if (ref == nullptr) return is_cell(t);
+  // The cells live in a Compact_container whose blocks are never freed while
+  // the triangulation lives: the slot can be read, and says if it is used.
+  using Cell = Rt::Triangulation_data_structure::Cell;
+  using Cells = Rt::Triangulation_data_structure::Cell_range;
+  const Cell& cell = *static_cast<const Cell*>(ref);
+  const Rt::Cell_handle c = Cells::s_iterator_to(const_cast<Cell&>(cell));
+  if (!impl_->rt.tds().cells().is_used(c)) return false;
+  Tet a = impl_->tet_of(c), b = t;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  return a == b;
 }
 
 void RegularTriangulation::adjacent_vertices(int v, std::vector<int>& out) const {

@@ -25,6 +25,11 @@ namespace wqmesh {
 using Tet = std::array<int, 4>;
 constexpr int kInfinite = -1;
 
+/// An opaque reference to a cell, valid as a fast check of whether that cell
+/// still exists (see RegularTriangulation::is_cell); never dereferenced by
+/// callers.
+using CellRef = const void*;
+
 class RegularTriangulation {
  public:
   RegularTriangulation();
@@ -51,11 +56,16 @@ class RegularTriangulation {
   bool is_edge(int a, int b) const;
   bool is_facet(int a, int b, int c) const;
   bool is_cell(const Tet& t) const;
+  /// Whether t is still a cell, where `ref` is what incident_cells gave for it
+  /// (the slot of a destroyed cell is kept, marked free, or reused by a cell
+  /// with other vertices): O(1) instead of a search around a vertex.
+  bool is_cell(const Tet& t, CellRef ref) const;
 
   /// Every finite cell, positively oriented.
   std::vector<Tet> finite_cells() const;
-  /// The cells incident to v, finite or not (kInfinite in infinite ones).
-  void incident_cells(int v, std::vector<Tet>& out) const;
+  /// The cells incident to v, finite or not (kInfinite in infinite ones),
+  /// and, when `refs` is given, a CellRef for each.
+  void incident_cells(int v, std::vector<Tet>& out, std::vector<CellRef>* refs = nullptr) const;
   /// The finite vertices adjacent to v.
   void adjacent_vertices(int v, std::vector<int>& out) const;
   /// The vertices (kInfinite included) of the cells around edge ab, other
