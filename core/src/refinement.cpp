@@ -107,7 +107,10 @@ bool Mesher::process_queues(bool refine_phase) {
         split = guarded(h) ? !subfacet_present(h) : subfacet_encroached(h);
       }
       if (split) {
-        insert(splitf(h), refine_phase ? 5 : 2);
+        // SPLITF may reject the circumcenter and split a subsegment instead;
+        // then the subfacet is looked at again once that is done.
+        const Insertion ins = splitf(h);
+        if (insert(ins, refine_phase ? 5 : 2) >= 0 && ins.has_segment) facet_queue_.push_back(h);
         tick();
       }
       continue;
@@ -146,7 +149,12 @@ bool Mesher::check_tet(const Tet& t, CellRef ref) {
   for (int i = 0; i < 3; ++i)  // never insert outside B (section 5)
     if (!(z[i] > dom_.box.lo[i] && z[i] < dom_.box.hi[i])) return false;
   if (in_protecting_ball(z)) return false;
-  return insert(encroach(z, t[0]), 6) >= 0;
+  // When ENCROACH rejects z for a point on a subsegment or subfacet, the tet
+  // is looked at again afterwards (it may survive that insertion).
+  const Insertion ins = encroach(z, t[0]);
+  if (insert(ins, 6) < 0) return false;
+  if (ins.on != On::free) tet_queue_.push_back({t, ref});
+  return true;
 }
 
 bool Mesher::rule3() {
