@@ -59,6 +59,11 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("stopped", r.stopped);
   j.field("time_s", time_s);
   if (peak_memory_mb >= 0) j.field("peak_memory_mb", peak_memory_mb);
+  j.field("all_vertices", r.all_vertices);
+  if (r.delaunay_floor_s > 0) {
+    j.field("delaunay_floor_s", r.delaunay_floor_s);
+    j.field("ratio_to_delaunay", time_s / r.delaunay_floor_s);
+  }
   j.field("tets_per_second", time_s > 0 ? double(r.mesh.tets.size()) / time_s : 0.0);
   j.key("options").begin_object();
   j.field("rho0", options.rho0).field("theta_deg", options.theta_deg).field("pump", options.pump);

@@ -143,6 +143,15 @@ MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshO
   r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
   r.pumped_vertices = m.pumped_vertices;
   r.rule_points = m.rule_count;
+  r.all_vertices = m.vertices().size();
+  if (options.measure_floor) {
+    std::vector<Point3> points(m.vertices().size());
+    for (std::size_t v = 0; v < points.size(); ++v) points[v] = m.triangulation().point(static_cast<int>(v));
+    const auto f0 = clock::now();
+    RegularTriangulation floor;
+    floor.insert_all(points);
+    r.delaunay_floor_s = std::chrono::duration<double>(clock::now() - f0).count();
+  }
   return r;
 }
 

@@ -140,6 +140,7 @@ struct Insertion {
   double angle = 0;
   int ball = -1;
   int hint = -1;
+  bool none = false;  ///< nothing to insert (see SPLITF in a vertex ball)
 };
 
 enum class Phase { initialize, conform, refine, pump, done };
@@ -254,6 +255,11 @@ class Mesher {
   std::deque<Subfacet> facet_queue_;
   std::deque<std::pair<Tet, CellRef>> tet_queue_;
   std::size_t inserted_ = 0, steps_ = 0;
+  /// How often a subfacet (or a tet, by three of its vertices) was looked at
+  /// again after its split was deferred to another feature; bounded by
+  /// kRetries so that no feature keeps the refinement busy forever.
+  std::unordered_map<Tri, int, TriHash> retries_;
+  static constexpr int kRetries = 16;
   std::string stop_reason_;
   friend class Pump;
 };

@@ -110,7 +110,8 @@ bool Mesher::process_queues(bool refine_phase) {
         // SPLITF may reject the circumcenter and split a subsegment instead;
         // then the subfacet is looked at again once that is done.
         const Insertion ins = splitf(h);
-        if (insert(ins, refine_phase ? 5 : 2) >= 0 && ins.has_segment) facet_queue_.push_back(h);
+        if (insert(ins, refine_phase ? 5 : 2) >= 0 && ins.has_segment && ++retries_[sorted(h.v)] <= kRetries)
+          facet_queue_.push_back(h);
         tick();
       }
       continue;
@@ -153,7 +154,7 @@ bool Mesher::check_tet(const Tet& t, CellRef ref) {
   // is looked at again afterwards (it may survive that insertion).
   const Insertion ins = encroach(z, t[0]);
   if (insert(ins, 6) < 0) return false;
-  if (ins.on != On::free) tet_queue_.push_back({t, ref});
+  if (ins.on != On::free && ++retries_[sorted({{t[0], t[1], t[2]}})] <= kRetries) tet_queue_.push_back({t, ref});
   return true;
 }
 

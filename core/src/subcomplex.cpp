@@ -104,6 +104,7 @@ std::vector<Subfacet> Mesher::subfacets() const {
 }
 
 int Mesher::insert(const Insertion& ins) {
+  if (ins.none) return -1;
   const int before = tri_.number_of_vertices();
   const int id = tri_.insert(ins.p, 0, ins.hint);
   if (id < before) return -1;  // hidden or an existing vertex: nothing inserted
@@ -281,27 +282,42 @@ Insertion Mesher::splitf(const Subfacet& h) {
     for (int u : loop) {
       const double r = dom_.ball_radius[u];
       if (r <= 0 || dist2(c, dom_.p.vertices[u]) >= r * r) continue;
-      // The shield subsegment of this facet at u whose arc is nearest, in
-      // angle, to the direction of c (c may fall outside every sector when
-      // the triangle is not a fan triangle of u).
+      // c is inside the vertex ball of u. A shield subsegment of this facet
+      // at u that c encroaches is split (the largest); else the one whose arc
+      // holds the direction of c; else c lies outside the facet's sectors at
+      // u and nothing is inserted. Shields shorter than 1e-6 r are not split:
+      // the subfacet is then left as it is (rule 2 or 5 reports it at the end
+      // if it stays missing).
       const Subsegment* pick = nullptr;
-      double best = HUGE_VAL;
+      double best = 0;
       for (int sid : vertex_sectors_[u]) {
-        const Sector& s = sectors_[sid];
-        if (s.facet != h.facet) continue;
-        const Point3 d = sub(c, s.center);
-        double t = std::atan2(dot(d, s.e2), dot(d, s.e1));
-        if (t < 0) t += 2 * 3.14159265358979323846;
+        if (sectors_[sid].facet != h.facet) continue;
         for (const std::uint64_t k : shield_keys(sid)) {
           const Subsegment& g = segs_.at(k);
-          const double gap = t < g.ta ? g.ta - t : t > g.tb ? std::min(t - g.tb, 2 * 3.14159265358979323846 - t + g.ta) : 0;
-          if (gap < best) {
-            best = gap;
+          const double len2 = dist2(tri_.point(g.a), tri_.point(g.b));
+          if (len2 > best && in_diametric_ball(c, tri_.point(g.a), tri_.point(g.b))) {
+            best = len2;
             pick = &g;
           }
         }
       }
-      if (pick) return splite(*pick);
+      if (!pick)
+        for (int sid : vertex_sectors_[u]) {
+          const Sector& s = sectors_[sid];
+          if (s.facet != h.facet) continue;
+          const Point3 d = sub(c, s.center);
+          double t = std::atan2(dot(d, s.e2), dot(d, s.e1));
+          if (t < 0) t += 2 * 3.14159265358979323846;
+          if (t > s.span) continue;
+          for (const std::uint64_t k : shield_keys(sid)) {
+            const Subsegment& g = segs_.at(k);
+            if (g.ta <= t && t <= g.tb) pick = &g;
+          }
+        }
+      Insertion none;
+      none.none = true;
+      if (!pick || dist2(tri_.point(pick->a), tri_.point(pick->b)) < 1e-12 * r * r) return none;
+      return splite(*pick);
     }
   // SPLITF (ii): reject c if it encroaches a subsegment, preferring those in
   // the boundary of the facet or on it (shield subsegments).

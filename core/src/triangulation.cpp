@@ -104,6 +104,13 @@ int RegularTriangulation::insert(const Point3& p, double w, int hint) {
   return id;
 }
 
+void RegularTriangulation::insert_all(const std::vector<Point3>& points) {
+  std::vector<WPoint> wps;
+  wps.reserve(points.size());
+  for (const Point3& p : points) wps.emplace_back(BPoint(p[0], p[1], p[2]), 0.0);
+  impl_->rt.insert(wps.begin(), wps.end());
+}
+
 bool RegularTriangulation::set_weight(int v, double w) {
   const Rt::Vertex_handle old = impl_->handle(v);
   if (impl_->weights[v] == w) return true;

@@ -43,6 +43,11 @@ class RegularTriangulation {
   /// when p would be hidden by the weights around it (nothing changes).
   int insert(const Point3& p, double w = 0, int hint = -1);
 
+  /// Inserts many unweighted points at once (CGAL sorts them along a space
+  /// filling curve first); ids follow the order of `points` only when none
+  /// coincide. For measuring the plain Delaunay triangulation of a vertex set.
+  void insert_all(const std::vector<Point3>& points);
+
   /// Changes the weight of vertex v (removal and reinsertion; the id stays).
   /// Returns false, and keeps the old weight, when the new weighted point
   /// would be hidden.

@@ -39,6 +39,7 @@ constexpr const char* kUsage =
     "      1: usage or internal error.\n"
     "  mesh IN -o OUT [--stats STATS.json] [--rho R] [--sliver-angle DEG]\n"
     "       [--no-pump] [--max-vertices N] [--max-size H] [--box-margin M] [--quiet]\n"
+    "       [--measure-floor]\n"
     "      Mesh the polyhedron IN with WQMESH. OUT ends in .mesh (Medit), .vtu\n"
     "      (VTK, with per-tet quality and class) or .ele (TetGen: .node, .ele and\n"
     "      .face beside each other). --rho: rho0 of rule 6 (default 2.2);\n"
@@ -48,7 +49,8 @@ constexpr const char* kUsage =
     "      split tets with a larger circumradius (default: none). Progress on\n"
     "      stderr unless --quiet. Exit code 0: done; 1: usage or internal error;\n"
     "      2: invalid input; 3: stopped by the vertex limit (the mesh is written\n"
-    "      only if it conforms to the input).\n"
+    "      only if it conforms to the input). --measure-floor also times a plain\n"
+    "      Delaunay triangulation of the final vertex set (ratio_to_delaunay).\n"
     "  --help, --version\n";
 
 int usage_error(const std::string& message) {
@@ -153,6 +155,8 @@ int run_mesh(const std::vector<std::string>& args) {
       analysis_options.box_margin = options.box_margin;
     } else if (a == "--quiet") {
       quiet = true;
+    } else if (a == "--measure-floor") {
+      options.measure_floor = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "' for mesh");
     } else if (path.empty()) {

@@ -5,7 +5,9 @@
 //   Table 2: input points, sharp elements, points inserted, R/l bins,
 //            smallest-dihedral bins (of the WQMESH mesh);
 //   Table 1: slivers with PUMP off and on;
-//   and time, tets, tets per second, peak memory, violations.
+//   and time, tets, tets per second, peak memory, violations, and the ratio
+//   of the whole run to a plain Delaunay triangulation of the final vertex
+//   set ("x Del", the floor no refinement can beat).
 // Usage: node examples/node/tables.mjs [--timeout SECONDS] [--max-vertices N] [MODEL ...]
 // SPDX-License-Identifier: GPL-3.0-or-later
 import { spawnSync } from 'node:child_process';
@@ -45,6 +47,7 @@ function run(model, pump) {
   const argv = ['mesh', model, '-o', join(work, 'out.mesh'), '--stats', stats, '--quiet',
     '--max-vertices', String(maxVertices)];
   if (!pump) argv.push('--no-pump');
+  else argv.push('--measure-floor');
   const r = spawnSync(cli, argv, { timeout: timeout * 1000, encoding: 'utf8' });
   if (r.error && r.error.code === 'ETIMEDOUT') return { failed: `timeout ${timeout} s` };
   if (!existsSync(stats)) return { failed: (r.stderr || '').trim().split('\n').pop() };
@@ -59,7 +62,7 @@ console.log(`wqmesh tables: rho0 2.2, theta 3 deg, timeout ${timeout} s, max ver
 console.log(['model'.padEnd(24), pad('in pts', 7), pad('sharp', 6), pad('inserted', 9),
   pad('R/l .6-1.4', 11), pad('1.4-2.2', 8), pad('>2.2', 6), pad('dih 0-3', 8), pad('3-5', 6), pad('5-10', 6),
   pad('QMESH sl', 9), pad('WQMESH sl', 10), pad('viol', 5), pad('tets', 8), pad('time s', 8),
-  pad('tets/s', 8), pad('MB', 6), '  note'].join(' '));
+  pad('tets/s', 8), pad('MB', 6), pad('x Del', 6), '  note'].join(' '));
 for (const model of models) {
   const off = run(model, false);
   const on = run(model, true);
@@ -74,6 +77,6 @@ for (const model of models) {
     pad(s.dihedral_bins['0-3'], 8), pad(s.dihedral_bins['3-5'], 6), pad(s.dihedral_bins['5-10'], 6),
     pad(off.vertices ? off.slivers : '-', 9), pad(on.vertices ? on.slivers : '-', 10), pad(s.violations, 5),
     pad(s.tets, 8), pad(s.time_s.toFixed(2), 8), pad(Math.round(s.tets_per_second), 8),
-    pad(Math.round(s.peak_memory_mb), 6), `  ${[off.failed && `QMESH ${off.failed}`, on.failed && `WQMESH ${on.failed}`].filter(Boolean).join('; ')}`);
+    pad(Math.round(s.peak_memory_mb), 6), pad(s.ratio_to_delaunay ? s.ratio_to_delaunay.toFixed(0) : '-', 6), `  ${[off.failed && `QMESH ${off.failed}`, on.failed && `WQMESH ${on.failed}`].filter(Boolean).join('; ')}`);
   console.log(row.join(' '));
 }

@@ -36,6 +36,9 @@ struct MeshOptions {
   /// PUMP visits the sliver vertices in passes; it stops after a pass that
   /// improves nothing or after this many passes.
   int max_pump_passes = 4;
+  /// Also time a plain Delaunay triangulation of the final vertex set (the
+  /// floor no refinement can beat), in MeshResult::delaunay_floor_s.
+  bool measure_floor = false;
 };
 
 /// Progress report: phase name ("initialize", "conform", "refine", "pump",
@@ -100,6 +103,10 @@ struct MeshResult {
   /// rule i (1..7); rule_points[0] counts those of INITIALIZE.
   std::array<std::size_t, 8> rule_points{};
   std::vector<PhaseStats> phases;
+  /// With MeshOptions::measure_floor: seconds to build the plain Delaunay
+  /// triangulation of every vertex of V (box included), else 0.
+  double delaunay_floor_s = 0;
+  std::size_t all_vertices = 0;  ///< |V|, the box and the outside included
 };
 
 /// Meshes the polyhedron bounded by `plc` (validated by build_plc, analysed by
