@@ -78,7 +78,7 @@ function box() {
 function wedge() {
   // Cross-section: a triangle with a corner of atan(0.703125 / 4) = 9.97 degrees;
   // the edge through that corner has an internal dihedral angle of 9.97 degrees.
-  return prism('wedge', 'a thin wedge (triangular prism): acute dihedral angle of 9.97 degrees',
+  return prism('thin_wedge', 'a thin wedge (triangular prism): acute dihedral angle of 9.97 degrees',
                [[0, 0], [4, 0], [4, 0.703125]], 0, 2);
 }
 

@@ -226,9 +226,18 @@ std::vector<std::string> models(const std::string& dir, const std::set<std::stri
   return out;
 }
 
+// A model on which every rule acts: the 20mm cube from ../shared/models, or
+// when that folder is absent, an example model; "" when neither is there.
+std::string rich_model() {
+  const auto shared = models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"});
+  if (!shared.empty()) return shared[0];
+  const auto examples = models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off"});
+  return examples.empty() ? "" : examples[0];
+}
+
 TEST(Mesher, ExampleModelsMeetEveryInvariant) {
   const auto files = models(WQMESH_EXAMPLE_MODELS,
-                            {"box.off", "bracket.off", "edge_facet.off", "slit.off", "spike.off", "wedge.off"});
+                            {"box.off", "bracket.off", "edge_facet.off", "slit.off", "spike.off", "thin_wedge.off"});
   if (files.empty()) GTEST_SKIP() << "no example models";
   for (const std::string& f : files) {
     const Input in = load(f);
@@ -275,7 +284,7 @@ TEST(Mesher, LShapedBlockHasNoViolation) {
 
 TEST(Mesher, ProvenRhoLeavesNoSkinnyViolation) {
   // rho0 = 3.5 > 2/(1 - tan(pi/8)): skinny tets lie near small angles.
-  const auto files = models(WQMESH_EXAMPLE_MODELS, {"wedge.off", "spike.off", "slit.off"});
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"thin_wedge.off", "spike.off", "slit.off"});
   if (files.empty()) GTEST_SKIP() << "no example models";
   MeshOptions o;
   o.rho0 = 3.5;
@@ -315,7 +324,7 @@ TEST(Mesher, SameInputSameMesh) {
 }
 
 TEST(Mesher, VertexLimitAndCancelStopTheRun) {
-  const auto files = models(WQMESH_EXAMPLE_MODELS, {"wedge.off"});
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"thin_wedge.off"});
   if (files.empty()) GTEST_SKIP() << "no example models";
   const Input in = load(files[0]);
   MeshOptions o;
@@ -512,9 +521,7 @@ namespace {
 TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
   // PUMP searches [0, N(v)^2/9] at the critical weights where the star of v
   // changes; a fine grid over the interval must find nothing better.
-  const auto files = models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"});
-  const auto examples = models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off"});
-  const std::string file = !files.empty() ? files[0] : !examples.empty() ? examples[0] : "";
+  const std::string file = rich_model();
   if (file.empty()) GTEST_SKIP() << "no model";
   const Input in = load(file);
   const mesher::Domain dom(in.plc, in.analysis);
@@ -563,9 +570,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
   // a vertex ball); SPLITF the circumcenter of a subfacet, in its facet, which
   // encroaches no subsegment; rule 6 a free circumcenter outside every
   // protecting ball that encroaches no subsegment or subfacet.
-  const auto files = models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"});
-  const auto examples = models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off"});
-  const std::string file = !files.empty() ? files[0] : !examples.empty() ? examples[0] : "";
+  const std::string file = rich_model();
   if (file.empty()) GTEST_SKIP() << "no model";
   const Input in = load(file);
   const mesher::Domain dom(in.plc, in.analysis);

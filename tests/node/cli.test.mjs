@@ -62,7 +62,7 @@ test('invalid input exits 2 with the defect on stderr', { skip }, () => {
 
 test('the vertex limit exits 3 and says so in the statistics', { skip }, () => {
   const stats = join(work, 'limit.json');
-  const r = run('mesh', join(root, 'examples/models/wedge.off'), '-o', join(work, 'limit.mesh'),
+  const r = run('mesh', join(root, 'examples/models/thin_wedge.off'), '-o', join(work, 'limit.mesh'),
                 '--stats', stats, '--max-vertices', '40', '--quiet');
   assert.equal(r.status, 3, r.stderr);
   assert.equal(JSON.parse(readFileSync(stats, 'utf8')).stopped, 'limit');

@@ -43,7 +43,7 @@ function signedVolume(v, t) {
   return volume;
 }
 
-for (const name of ['box.off', 'wedge.off', 'spike.off', 'slit.off', 'bracket.off', 'edge_facet.off']) {
+for (const name of ['box.off', 'thin_wedge.off', 'spike.off', 'slit.off', 'bracket.off', 'edge_facet.off']) {
   test(`wasm mesh of ${name} conforms and agrees with the native build`, () => {
     const model = join(root, 'examples/models', name);
     let calls = 0;
@@ -78,12 +78,12 @@ for (const name of ['box.off', 'wedge.off', 'spike.off', 'slit.off', 'bracket.of
 }
 
 test('a cancelled wasm run says so', () => {
-  const r = wqmesh.mesh(readFileSync(join(root, 'examples/models/wedge.off')), { onProgress: () => false });
+  const r = wqmesh.mesh(readFileSync(join(root, 'examples/models/thin_wedge.off')), { onProgress: () => false });
   assert.equal(r.stats.stopped, 'cancelled');
 });
 
 test('the vertex limit stops a wasm run', () => {
-  const r = wqmesh.mesh(readFileSync(join(root, 'examples/models/wedge.off')), { maxVertices: 60 });
+  const r = wqmesh.mesh(readFileSync(join(root, 'examples/models/thin_wedge.off')), { maxVertices: 60 });
   assert.equal(r.stats.stopped, 'limit');
 });
 
