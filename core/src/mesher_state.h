@@ -284,7 +284,7 @@ class Pump {
   void prepare();
   void run();
   /// (smallest dihedral, vertex) for the vertices of inside tets with a
-  /// dihedral angle <= theta, worst first.
+  /// dihedral angle <= theta, worst first, as found by prepare().
   std::vector<std::pair<double, int>> candidates() const;
   /// N(v)^2/9.
   double weight_bound(int v) const;
@@ -319,6 +319,7 @@ class Pump {
   std::unordered_map<TetKey, char, TetKeyHash> labels_;
   std::unordered_set<Tri, TriHash> walls_;
   std::vector<std::vector<Tri>> vertex_facets_;
+  std::vector<std::pair<double, int>> candidates_;
 };
 
 }  // namespace wqmesh::mesher

@@ -63,6 +63,15 @@ void Pump::prepare() {
   const std::vector<char> inside = m_.interior_labels(g);
   labels_.clear();
   for (std::size_t i = 0; i < g.cells.size(); ++i) labels_[key_of(g.cells[i])] = inside[i];
+  // Vertices of inside tets with a dihedral angle <= theta, worst first.
+  candidates_.clear();
+  for (std::size_t i = 0; i < g.cells.size(); ++i) {
+    if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
+    const double a = angle_of(g.cells[i]);
+    if (a <= m_.opt_.theta_deg)
+      for (int v : g.cells[i]) candidates_.push_back({a, v});
+  }
+  std::sort(candidates_.begin(), candidates_.end());
   walls_.clear();
   vertex_facets_.assign(m_.verts_.size(), {});
   for (const Subfacet& h : m_.subfacets()) {
@@ -72,18 +81,7 @@ void Pump::prepare() {
   }
 }
 
-std::vector<std::pair<double, int>> Pump::candidates() const {
-  // Vertices of inside tets with a dihedral angle <= theta, worst first.
-  std::vector<std::pair<double, int>> cand;
-  for (const auto& [key, inside] : labels_) {
-    if (!inside || key[0] == kInfinite || !tri_.is_cell(key)) continue;
-    const double a = angle_of(key);
-    if (a <= m_.opt_.theta_deg)
-      for (int v : key) cand.push_back({a, v});
-  }
-  std::sort(cand.begin(), cand.end());
-  return cand;
-}
+std::vector<std::pair<double, int>> Pump::candidates() const { return candidates_; }
 
 double Pump::weight_bound(int v) const { return m_.nn_[v] * m_.nn_[v] / 9; }
 
@@ -245,7 +243,7 @@ Pump::Choice Pump::pump_vertex(int v) {
   // Walk [0, wmax] from one critical weight to the next; between two of them
   // the star, hence the smallest angle, does not change: one sample each.
   double cw = 0;
-  evaluate(v, cw, f);
+  tri_.set_weight(v, cw);  // only the star at cw matters to next_critical
   for (int step = 0; step < 256; ++step) {
     const double c = next_critical(v, cw, wmax);
     const double sample = 0.5 * (cw + c);
@@ -257,7 +255,7 @@ Pump::Choice Pump::pump_vertex(int v) {
     if (c >= wmax) break;
     cw = c + 1e-9 * wmax;  // just past the critical weight
     if (cw >= wmax) break;
-    evaluate(v, cw, f);
+    tri_.set_weight(v, cw);
   }
   evaluate(v, choice.weight, f);
   return choice;
