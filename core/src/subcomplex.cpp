@@ -16,6 +16,16 @@ Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressC
     : dom_(domain), opt_(options), progress_(progress) {
   trace_ = std::getenv("WQMESH_TRACE") != nullptr;
   facet_dt_.resize(domain.p.facets.size());
+  // Each facet's planar triangulation projects along the largest component of
+  // its normal, lifted from the plane through its first vertex (see
+  // PlanarDelaunay): points collinear in 3D stay collinear there.
+  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) {
+    const PlcFacet& F = domain.p.facets[f];
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(F.normal[k]) > std::abs(F.normal[axis])) axis = k;
+    facet_dt_[f].set_plane(axis, domain.p.vertices[F.loops.at(0).at(0)][axis]);
+  }
   vertex_sectors_.assign(domain.p.vertices.size(), {});
 }
 
@@ -139,10 +149,7 @@ int Mesher::insert(const Insertion& ins) {
   }
   std::vector<int> fs;
   facets_of(id, fs);
-  for (int f : fs) {
-    const auto q = dom_.to2d(f, ins.p);
-    facet_dt_[f].insert(q[0], q[1], id);
-  }
+  for (int f : fs) facet_dt_[f].insert(ins.p, id);
   if (phase_ != Phase::initialize) ++inserted_;
   enqueue_around(id);
   if (verts_.size() >= opt_.max_vertices && stop_reason_.empty()) stop_reason_ = "limit";

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -33,10 +33,12 @@ using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
 using WPoint = K::Weighted_point_3;
 using BPoint = K::Point_3;
 
-// Planar Delaunay triangulation of one facet's vertices. Vertex info = our id.
-using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
-using Tds2 = CGAL::Triangulation_data_structure_2<Vb2>;
-using Dt2 = CGAL::Delaunay_triangulation_2<K, Tds2>;
+// Planar Delaunay triangulation of one facet's vertices, as a 2D regular
+// triangulation of their projections (see PlanarDelaunay). Vertex info = our id.
+using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, K, CGAL::Regular_triangulation_vertex_base_2<K>>;
+using Fb2 = CGAL::Regular_triangulation_face_base_2<K>;
+using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
+using Dt2 = CGAL::Regular_triangulation_2<K, Tds2>;
 
 }  // namespace
 
@@ -274,6 +276,8 @@ RegularTriangulation::CellGraph RegularTriangulation::cell_graph() const {
 struct PlanarDelaunay::Impl {
   Dt2 dt;
   std::unordered_map<int, Dt2::Vertex_handle> by_id;
+  int axis = 2;
+  double ref = 0;
 };
 
 PlanarDelaunay::PlanarDelaunay() : impl_(new Impl) {}
@@ -281,13 +285,23 @@ PlanarDelaunay::~PlanarDelaunay() = default;
 PlanarDelaunay::PlanarDelaunay(PlanarDelaunay&&) noexcept = default;
 PlanarDelaunay& PlanarDelaunay::operator=(PlanarDelaunay&&) noexcept = default;
 
-int PlanarDelaunay::insert(double x, double y, int id) {
-  const K::Point_2 p(x, y);
+void PlanarDelaunay::set_plane(int axis, double ref) {
+  impl_->axis = axis;
+  impl_->ref = ref;
+}
+
+int PlanarDelaunay::insert(const Point3& p, int id) {
+  // (x, y) keep the cyclic order of the axes so that the projection of a
+  // facet whose normal points along +axis is counter-clockwise.
+  const int a = impl_->axis, i = (a + 1) % 3, j = (a + 2) % 3;
+  const double h = p[a] - impl_->ref;
+  const Dt2::Weighted_point wp(K::Point_2(p[i], p[j]), -(h * h));
   Dt2::Locate_type lt;
   int li = 0;
-  const Dt2::Face_handle f = impl_->dt.locate(p, lt, li);
+  const Dt2::Face_handle f = impl_->dt.locate(wp, lt, li);
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
-  const Dt2::Vertex_handle v = impl_->dt.insert(p, lt, f, li);
+  const Dt2::Vertex_handle v = impl_->dt.insert(wp, lt, f, li);
+  if (v == Dt2::Vertex_handle() || v->is_hidden()) return -1;
   v->info() = id;
   impl_->by_id[id] = v;
   return id;

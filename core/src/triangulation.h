@@ -99,9 +99,20 @@ class RegularTriangulation {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The Delaunay triangulation of the mesh vertices lying on one facet, in 2D
-/// coordinates of the facet's plane (paper, section 4: its triangles inside the
-/// facet are the subfacets). Ids are the caller's (the 3D vertex ids).
+/// The Delaunay triangulation of the mesh vertices lying on one facet (paper,
+/// section 4: its triangles inside the facet are the subfacets). Ids are the
+/// caller's (the 3D vertex ids).
+///
+/// Contract: the predicates see the 3D points themselves, never rotated 2D
+/// coordinates, so that points collinear in 3D (input vertices and the points
+/// inserted on collinear input edges) are collinear here too and no zero-area
+/// triangle arises that the 3D triangulation cannot contain. Orientation is
+/// taken in the projection that drops the coordinate `axis` (the largest
+/// component of the facet's normal), which is exact; the in-circle test lifts
+/// each point with its squared 3D distance to the plane `axis = ref`, that is,
+/// a 2D regular triangulation with weight -(p[axis] - ref)^2. For points on one
+/// plane this is the Delaunay triangulation within that plane (the lift is the
+/// squared 3D norm up to an affine function of the projected coordinates).
 class PlanarDelaunay {
  public:
   PlanarDelaunay();
@@ -111,10 +122,14 @@ class PlanarDelaunay {
   PlanarDelaunay(PlanarDelaunay&&) noexcept;
   PlanarDelaunay& operator=(PlanarDelaunay&&) noexcept;
 
-  /// Inserts the point (x, y) with the caller's id. A point equal to an
-  /// existing one is ignored and that one's id returned.
-  int insert(double x, double y, int id);
-  /// Every finite triangle, counter-clockwise, as caller ids.
+  /// The plane's projection axis (0, 1 or 2) and reference coordinate; call
+  /// before the first insert.
+  void set_plane(int axis, double ref);
+  /// Inserts the 3D point p (on the plane, up to rounding) with the caller's
+  /// id. A point equal to an existing one in projection is ignored and that
+  /// one's id returned; -1 if the point is hidden (never for coplanar points).
+  int insert(const Point3& p, int id);
+  /// Every finite triangle, counter-clockwise in the projection, as caller ids.
   std::vector<std::array<int, 3>> triangles() const;
   /// The finite triangles incident to the point with caller id `id`.
   void incident_triangles(int id, std::vector<std::array<int, 3>>& out) const;

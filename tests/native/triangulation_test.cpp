@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <cmath>
 #include <random>
 
 namespace wqmesh {
@@ -110,17 +112,85 @@ TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {
 
 TEST(Triangulation, PlanarDelaunayOfASquareWithCentre) {
   PlanarDelaunay d;
-  d.insert(0, 0, 10);
-  d.insert(1, 0, 11);
-  d.insert(1, 1, 12);
-  d.insert(0, 1, 13);
-  d.insert(0.5, 0.5, 14);
-  EXPECT_EQ(d.insert(1, 1, 99), 12);
+  d.set_plane(2, 0);
+  d.insert({0, 0, 0}, 10);
+  d.insert({1, 0, 0}, 11);
+  d.insert({1, 1, 0}, 12);
+  d.insert({0, 1, 0}, 13);
+  d.insert({0.5, 0.5, 0}, 14);
+  EXPECT_EQ(d.insert({1, 1, 0}, 99), 12);
   const auto tris = d.triangles();
   EXPECT_EQ(tris.size(), 4u);
   std::vector<std::array<int, 3>> around;
   d.incident_triangles(14, around);
   EXPECT_EQ(around.size(), 4u);
+}
+
+// The planar triangulation is Delaunay within the (tilted) plane, not in the
+// projection it uses for orientation: compared with a brute-force empty-circle
+// search in orthonormal coordinates of the plane z = 2x.
+TEST(Triangulation, PlanarDelaunayIsDelaunayInTheTiltedPlane) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> p;
+  for (int i = 0; i < 40; ++i) {
+    const double x = u(rng), y = u(rng);
+    p.push_back({x, y, 2 * x});
+  }
+  PlanarDelaunay d;
+  d.set_plane(0, 0);  // normal (-2, 0, 1): x is the largest component
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) ASSERT_EQ(d.insert(p[i], i), i);
+  // Orthonormal plane coordinates: s = sqrt(5) x, t = y.
+  auto st = [&](int i) { return std::array<double, 2>{{std::sqrt(5.0) * p[i][0], p[i][1]}}; };
+  std::set<std::array<int, 3>> brute;
+  const int n = static_cast<int>(p.size());
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b)
+      for (int c = b + 1; c < n; ++c) {
+        const auto A = st(a), B = st(b), C = st(c);
+        const double bx = B[0] - A[0], by = B[1] - A[1], cx = C[0] - A[0], cy = C[1] - A[1];
+        const double den = 2 * (bx * cy - by * cx);
+        if (std::abs(den) < 1e-12) continue;
+        const double ox = (cy * (bx * bx + by * by) - by * (cx * cx + cy * cy)) / den;
+        const double oy = (bx * (cx * cx + cy * cy) - cx * (bx * bx + by * by)) / den;
+        const double r2 = ox * ox + oy * oy;
+        bool empty = true;
+        for (int e = 0; e < n && empty; ++e) {
+          if (e == a || e == b || e == c) continue;
+          const auto E = st(e);
+          const double dx = E[0] - A[0] - ox, dy = E[1] - A[1] - oy;
+          empty = dx * dx + dy * dy > r2;
+        }
+        if (empty) brute.insert({{a, b, c}});
+      }
+  std::set<std::array<int, 3>> got;
+  for (auto t : d.triangles()) {
+    std::sort(t.begin(), t.end());
+    got.insert(t);
+  }
+  EXPECT_EQ(got, brute);
+}
+
+// Points collinear in 3D (here on a line of a tilted plane, as the points
+// inserted on collinear input edges are) never make a triangle.
+TEST(Triangulation, PlanarDelaunayKeepsCollinearPointsCollinear) {
+  PlanarDelaunay d;
+  d.set_plane(2, 0.25);  // plane x + y + 3z = 0.75 + ...: z is the largest normal component
+  int id = 0;
+  std::vector<int> on_line;
+  for (int k = 0; k < 9; ++k) {
+    const double t = 0.125 * k;  // exact: (t, 0.5 t, 0.25 - 0.5 t) lies on x + y + 3z = 0.75
+    on_line.push_back(d.insert({t, 0.5 * t, 0.25 - 0.5 * t}, id++));
+  }
+  d.insert({0.3, 0.9, (0.75 - 0.3 - 0.9) / 3}, id++);
+  d.insert({0.8, -0.5, (0.75 - 0.8 + 0.5) / 3}, id++);
+  const auto tris = d.triangles();
+  EXPECT_FALSE(tris.empty());
+  for (const auto& t : tris) {
+    int hits = 0;
+    for (int v : t) hits += std::count(on_line.begin(), on_line.end(), v) > 0;
+    EXPECT_LT(hits, 3) << "triangle " << t[0] << " " << t[1] << " " << t[2];
+  }
 }
 
 }  // namespace
