@@ -244,6 +244,10 @@ export interface MeshStats {
   conforming: boolean;
   /** "" when done, "limit" or "cancelled". */
   stopped: '' | 'limit' | 'cancelled';
+  /** Why the run stopped, in words (present only when it stopped): the phase
+   * that reached the vertex limit, or the two input edges whose small angle
+   * needs more vertices than the limit (then the run stops before meshing). */
+  stop_message?: string;
   time_s: number;
   tets_per_second: number;
   rule_points: number[];

@@ -57,6 +57,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("volume_mesh", s.volume);
   j.field("conforming", r.conforming);
   j.field("stopped", r.stopped);
+  if (!r.stop_message.empty()) j.field("stop_message", r.stop_message);
   j.field("time_s", time_s);
   if (peak_memory_mb >= 0) j.field("peak_memory_mb", peak_memory_mb);
   j.field("all_vertices", r.all_vertices);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -92,9 +93,57 @@ MeshResult Mesher::extract() {
 
 }  // namespace mesher
 
+PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis) {
+  // Two input edges e1, e2 leave the sharp vertex u at angle t. At distance d
+  // from u, e2 passes within d sin t of e1, so a subsegment of e1 there of
+  // length s > 2 d sin t / (1 - sin t) has e2 through its diametric ball, and
+  // once e2 is split as finely, a vertex of e2 in it: rule 1 (SPLITE, section
+  // 4.2) splits it. Outside the vertex ball (radius f(u)/4, section 4.1) and up
+  // to L, the length of the shorter edge, e1 ends with subsegments of length
+  // about 2 d sin t, so about ln(4 L / f(u)) / (2 sin t) vertices; we take
+  // a quarter of that, ln(4 L / f(u)) / (8 sin t), as a safe lower estimate.
+  PointEstimate best;
+  std::vector<double> f(plc.vertices.size(), 0);
+  for (std::size_t i = 0; i < analysis.sharp_vertices.size(); ++i) f[analysis.sharp_vertices[i]] = analysis.lfs[i];
+  auto length = [&](int e) {
+    const Point3& a = plc.vertices[plc.edges[e].a];
+    const Point3& b = plc.vertices[plc.edges[e].b];
+    return std::sqrt(mesher::dist2(a, b));
+  };
+  for (const EdgeEdgeAngle& a : analysis.edge_edge) {
+    if (!a.acute || f[a.vertex] <= 0) continue;
+    const double L = std::min(length(a.edge1), length(a.edge2));
+    const double r = f[a.vertex] / 4;
+    const double s = std::sin(a.degrees * M_PI / 180);
+    if (!(L > r) || !(s > 0)) continue;
+    const double n = std::log(L / r) / (8 * s);
+    if (n > best.points) best = {n, a.vertex, a.edge1, a.edge2, a.degrees};
+  }
+  return best;
+}
+
 MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
                            const ProgressCallback& progress) {
   using clock = std::chrono::steady_clock;
+  const PointEstimate need = estimate_edge_points(plc, analysis);
+  if (need.points > double(options.max_vertices)) {
+    // Hopeless within the budget: say so at once instead of refining for
+    // minutes towards the limit.
+    MeshResult r;
+    r.stopped = "limit";
+    const PlcEdge& e1 = plc.edges[need.edge1];
+    const PlcEdge& e2 = plc.edges[need.edge2];
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "the input edges %d (vertices %d-%d) and %d (vertices %d-%d) meet at vertex %d at %.3g degrees: "
+                  "a conforming mesh needs at least about %.3g vertices along them, more than the vertex limit %zu",
+                  need.edge1, e1.a, e1.b, need.edge2, e2.a, e2.b, need.vertex, need.degrees, need.points,
+                  options.max_vertices);
+    r.stop_message = text;
+    r.input_points = plc.vertices.size();
+    r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
+    return r;
+  }
   const mesher::Domain domain(plc, analysis);
   mesher::Mesher m(domain, options, progress);
   std::vector<PhaseStats> phases;
@@ -137,6 +186,12 @@ MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshO
   s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
   phases.push_back(s);
   r.phases = phases;
+  if (r.stopped == "limit" && r.stop_message.empty()) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,
+                  phases.size() >= 2 ? phases[phases.size() - 2].name.c_str() : "initialize");
+    r.stop_message = text;
+  }
   r.input_points = plc.vertices.size();
   r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
   r.points_inserted = m.vertices().size() - domain.p.vertices.size();

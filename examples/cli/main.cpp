@@ -219,7 +219,10 @@ int run_mesh(const std::vector<std::string>& args) {
       }
     }
   } else {
-    std::cerr << "wqmesh: the mesh does not conform to the input; '" << out << "' not written\n";
+    if (result.stopped.empty() || result.all_vertices > 0)
+      std::cerr << "wqmesh: the mesh does not conform to the input; '" << out << "' not written\n";
+    else
+      std::cerr << "wqmesh: stopped before meshing; '" << out << "' not written\n";
   }
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
@@ -238,7 +241,9 @@ int run_mesh(const std::vector<std::string>& args) {
               << " tets, " << result.slivers << " slivers, " << result.skinny << " skinny, "
               << result.violations << " violations, " << seconds << " s\n";
   if (!result.stopped.empty()) {
-    std::cerr << "wqmesh: stopped: " << result.stopped << "\n";
+    std::cerr << "wqmesh: stopped: " << result.stopped;
+    if (!result.stop_message.empty()) std::cerr << ": " << result.stop_message;
+    std::cerr << "\n";
     return 3;
   }
   if (!result.conforming) return 1;

@@ -341,6 +341,31 @@ TEST(Mesher, VertexLimitAndCancelStopTheRun) {
   EXPECT_GE(calls, 2u);
 }
 
+// Two edges at 1e-7 rad need millions of vertices along them (each subsegment
+// is split until about 2 d sin t long, d its distance from the vertex): the
+// run stops at once with "limit" and names the two edges, and a budget above
+// the estimate lets it start.
+TEST(Mesher, HopelessAngleStopsAtOnceNamingTheEdges) {
+  const Input in = from_off(
+      "OFF\n4 4 0\n0 0 0\n1 0 0\n1 1e-7 0\n0.5 0 0.5\n"
+      "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n");
+  const PointEstimate need = estimate_edge_points(in.plc, in.analysis);
+  EXPECT_EQ(need.vertex, 0);
+  EXPECT_NEAR(need.degrees, 1e-7 * 180 / M_PI, 1e-12);
+  EXPECT_GT(need.points, 1e6);
+  EXPECT_LT(need.points, 1e7);
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+  EXPECT_EQ(r.stopped, "limit");
+  EXPECT_NE(r.stop_message.find("meet at vertex 0"), std::string::npos) << r.stop_message;
+  EXPECT_TRUE(r.mesh.tets.empty());
+  // A model without acute edge-edge angles estimates nothing.
+  const auto box = models(WQMESH_EXAMPLE_MODELS, {"box.off"});
+  if (!box.empty()) {
+    const Input b = load(box[0]);
+    EXPECT_EQ(estimate_edge_points(b.plc, b.analysis).points, 0);
+  }
+}
+
 TEST(Mesher, MaxSizeBoundsTheCircumradius) {
   const auto files = models(WQMESH_EXAMPLE_MODELS, {"box.off"});
   if (files.empty()) GTEST_SKIP() << "no example models";

@@ -91,6 +91,9 @@ struct MeshResult {
   std::vector<ProtectingBall> protecting_balls;
   /// "" when done, "limit" (max_vertices reached) or "cancelled".
   std::string stopped;
+  /// Why the run stopped, in words, when it did (for "limit": where the vertex
+  /// budget went, or the input feature that needs more vertices than it).
+  std::string stop_message;
   /// Every subsegment and subfacet is in the final triangulation.
   bool conforming = false;
   std::size_t input_points = 0;   ///< PLC vertices
@@ -109,8 +112,20 @@ struct MeshResult {
   std::size_t all_vertices = 0;  ///< |V|, the box and the outside included
 };
 
+/// A lower estimate of the vertices WQMESH needs for the two input edges that
+/// meet at the smallest edge-edge angle, weighed by their length (see
+/// estimate_edge_points in mesher.cpp for the argument).
+struct PointEstimate {
+  double points = 0;  ///< 0 when no two edges meet at an acute angle
+  int vertex = -1, edge1 = -1, edge2 = -1;
+  double degrees = 0;
+};
+PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis);
+
 /// Meshes the polyhedron bounded by `plc` (validated by build_plc, analysed by
-/// analyze) with WQMESH. Deterministic: the same input and options give the
+/// analyze) with WQMESH. When estimate_edge_points already exceeds
+/// options.max_vertices, returns at once with stopped = "limit" and a
+/// stop_message naming the two edges (no mesh). Deterministic: the same input and options give the
 /// same mesh. Throws std::runtime_error on an internal failure.
 MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options = {},
                            const ProgressCallback& progress = {});
