@@ -66,11 +66,13 @@ void Mesher::enqueue_around(int v) {
   for (int x : ring) {
     facets_of(x, fs);
     for (int f : fs) {
-      subfacets_at(f, x, around);
+      facet_dt_[f].incident_triangles(x, around);
       // The subfacets at v are new (in its facets' planar triangulations)
-      // and may be missing from Del V whatever their vertices.
+      // and may be missing from Del V whatever their vertices. The cheap
+      // tests first: lies_in_facet runs once per candidate.
       for (const Tri& t : around)
-        if ((x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) && seen.insert(sorted(t)).second)
+        if ((x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) && seen.insert(sorted(t)).second &&
+            lies_in_facet(f, t))
           facet_queue_.push_back({f, t});
     }
   }

@@ -97,11 +97,13 @@ void Mesher::subfacets_at(int f, int v, std::vector<Tri>& out) const {
 }
 
 bool Mesher::is_subfacet(int f, const Tri& t) const {
+  // A triangle of f's planar triangulation (found among those at t[0]), then
+  // in f: the costlier test runs on that one triangle only.
   std::vector<Tri> around;
-  subfacets_at(f, t[0], around);
+  facet_dt_[f].incident_triangles(t[0], around);
   const Tri st = sorted(t);
   for (const Tri& u : around)
-    if (sorted(u) == st) return true;
+    if (sorted(u) == st) return lies_in_facet(f, u);
   return false;
 }
 

@@ -62,6 +62,38 @@ struct RegularTriangulation::Impl {
     return Rt::Cell_handle();
   }
 
+  // Whether ab is an edge, walking the cells around a (through their faces
+  // at a) and stopping at the first cell that holds b; c, i, j as CGAL's
+  // is_edge gives them. Same answer as Rt::is_edge, which first collects the
+  // whole star of a. Needs dimension 3.
+  mutable std::vector<Rt::Cell_handle> walk;
+  bool find_edge(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Cell_handle& c, int& i, int& j) const {
+    if (rt.dimension() < 3) return rt.is_edge(a, b, c, i, j);
+    walk.clear();
+    walk.push_back(a->cell());
+    a->cell()->tds_data().mark_processed();
+    bool found = false;
+    for (std::size_t n = 0; n < walk.size() && !found; ++n) {
+      const Rt::Cell_handle x = walk[n];
+      if (x->has_vertex(b, j)) {
+        c = x;
+        i = x->index(a);
+        found = true;
+        break;
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (x->vertex(k) == a) continue;
+        const Rt::Cell_handle y = x->neighbor(k);
+        if (y->tds_data().is_clear()) {
+          y->tds_data().mark_processed();
+          walk.push_back(y);
+        }
+      }
+    }
+    for (const Rt::Cell_handle& x : walk) x->tds_data().clear();
+    return found;
+  }
+
   Rt::Vertex_handle handle(int v) const {
     if (v < 0 || v >= static_cast<int>(handles.size()))
       throw std::out_of_range("RegularTriangulation: no vertex " + std::to_string(v));
@@ -148,7 +180,7 @@ std::size_t RegularTriangulation::number_of_finite_cells() const {
 bool RegularTriangulation::is_edge(int a, int b) const {
   Rt::Cell_handle c;
   int i, j;
-  return impl_->rt.is_edge(impl_->handle(a), impl_->handle(b), c, i, j);
+  return impl_->find_edge(impl_->handle(a), impl_->handle(b), c, i, j);
 }
 
 bool RegularTriangulation::is_facet(int a, int b, int c) const {
@@ -211,7 +243,7 @@ bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out) const 
   out.clear();
   Rt::Cell_handle c;
   int i, j;
-  if (!impl_->rt.is_edge(impl_->handle(a), impl_->handle(b), c, i, j)) return false;
+  if (!impl_->find_edge(impl_->handle(a), impl_->handle(b), c, i, j)) return false;
   auto cell = impl_->rt.incident_cells(c, i, j), done = cell;
   do {
     for (int k = 0; k < 4; ++k) {
