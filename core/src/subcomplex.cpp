@@ -151,7 +151,7 @@ int Mesher::insert(const Insertion& ins) {
   }
   std::vector<int> fs;
   facets_of(id, fs);
-  for (int f : fs) facet_dt_[f].insert(ins.p, id);
+  for (int f : fs) facet_dt_[f].insert(ins.p, id, ins.hint);
   if (phase_ != Phase::initialize) ++inserted_;
   enqueue_around(id);
   if (verts_.size() >= opt_.max_vertices && stop_reason_.empty()) stop_reason_ = "limit";

@@ -310,6 +310,7 @@ struct PlanarDelaunay::Impl {
   std::unordered_map<int, Dt2::Vertex_handle> by_id;
   int axis = 2;
   double ref = 0;
+  Dt2::Vertex_handle last;
 };
 
 PlanarDelaunay::PlanarDelaunay() : impl_(new Impl) {}
@@ -322,20 +323,30 @@ void PlanarDelaunay::set_plane(int axis, double ref) {
   impl_->ref = ref;
 }
 
-int PlanarDelaunay::insert(const Point3& p, int id) {
+int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
   // (x, y) keep the cyclic order of the axes so that the projection of a
   // facet whose normal points along +axis is counter-clockwise.
   const int a = impl_->axis, i = (a + 1) % 3, j = (a + 2) % 3;
   const double h = p[a] - impl_->ref;
   const Dt2::Weighted_point wp(K::Point_2(p[i], p[j]), -(h * h));
+  // The walk starts at the hint's vertex when it is in this triangulation,
+  // else at the last one inserted: insertions come in spatial runs, and a
+  // walk from an arbitrary face costs O(sqrt n) on a large facet.
+  Dt2::Face_handle start;
+  const auto near = impl_->by_id.find(hint);
+  if (near != impl_->by_id.end())
+    start = near->second->face();
+  else if (impl_->last != Dt2::Vertex_handle())
+    start = impl_->last->face();
   Dt2::Locate_type lt;
   int li = 0;
-  const Dt2::Face_handle f = impl_->dt.locate(wp, lt, li);
+  const Dt2::Face_handle f = impl_->dt.locate(wp, lt, li, start);
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
   const Dt2::Vertex_handle v = impl_->dt.insert(wp, lt, f, li);
   if (v == Dt2::Vertex_handle() || v->is_hidden()) return -1;
   v->info() = id;
   impl_->by_id[id] = v;
+  impl_->last = v;
   return id;
 }
 

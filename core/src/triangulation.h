@@ -128,7 +128,9 @@ class PlanarDelaunay {
   /// Inserts the 3D point p (on the plane, up to rounding) with the caller's
   /// id. A point equal to an existing one in projection is ignored and that
   /// one's id returned; -1 if the point is hidden (never for coplanar points).
-  int insert(const Point3& p, int id);
+  /// `hint`: the id of a vertex near p, where the point location starts when
+  /// that vertex is in this triangulation (any value is allowed).
+  int insert(const Point3& p, int id, int hint = -1);
   /// Every finite triangle, counter-clockwise in the projection, as caller ids.
   std::vector<std::array<int, 3>> triangles() const;
   /// The finite triangles incident to the point with caller id `id`.
