@@ -203,18 +203,34 @@ export interface CheckOptions {}
 
 /** Options of {@link Wqmesh.mesh}; every one is optional. */
 export interface MeshOptions {
-  /** rho0 of rule 6, at least 1 (default 2.2; the proof needs above 3.41). */
+  /** rho0 of rule 6, in [1, 1e6] (default 2.2; the proof needs above 3.41). */
   rho?: number;
   /** theta of rule 7 and PUMP in degrees, in [0, 90] (default 3). */
   sliverAngle?: number;
   /** false: QMESH alone, no rule 7 and no PUMP (default true). */
   pump?: boolean;
-  /** The run stops with `stopped: "limit"` at this many vertices (default 1000000). */
+  /**
+   * The run stops with `stopped: "limit"` at this many vertices, in [8, 1e9]
+   * (default 1000000). INITIALIZE inserts the input vertices and the points of
+   * the protecting balls before the limit is looked at, so a stopped run may
+   * hold more.
+   */
   maxVertices?: number;
-  /** Tets with a larger circumradius are split (default 0: no bound). */
+  /** Tets with a larger circumradius are split, finite, at least 0 (default 0: no bound). */
   maxSize?: number;
-  /** Margin of the bounding box B, a fraction of the largest extent (default 0.5). */
+  /** Margin of the bounding box B, a fraction of the largest extent, in [0.001, 1000] (default 0.5). */
   boxMargin?: number;
+  /**
+   * The most bytes of wasm memory the call's C++ allocations may hold at once,
+   * in [65536, 4294967296] (default 3221225472, 3 GiB). An allocation beyond
+   * it fails, the run stops and {@link Wqmesh.mesh} throws an Error of kind
+   * `"limit"` naming the phase and the vertex count reached; its memory is
+   * freed and the module stays usable. The module's memory grows up to 4 GB
+   * (or less where the browser gives less): a run that needs more, with a cap
+   * at 4294967296, throws the same `"limit"` error. `stats.peak_memory_mb`
+   * tells what a finished run held at most.
+   */
+  maxMemoryBytes?: number;
   /**
    * Called after a bounded amount of work with the phase ("initialize",
    * "conform", "refine", "pump"), an estimated fraction of the run in [0, 1]
@@ -253,6 +269,20 @@ export interface MeshStats {
   rule_points: number[];
   phases: { name: string; time_s: number; points_inserted: number }[];
   protecting_balls: { center: [number, number, number]; radius: number; vertex_ball: boolean }[];
+  /**
+   * Memory, megabytes: the command line's peak resident set; the wasm
+   * module's peak of the call's live C++ allocations (compare with
+   * {@link MeshOptions.maxMemoryBytes}).
+   */
+  peak_memory_mb?: number;
+  /** Every violation (up to 1000): tet index, its vertex indices, kind, quality. */
+  violation_tets: {
+    tet: number;
+    vertices: [number, number, number, number];
+    kind: 'skinny' | 'sliver';
+    min_dihedral_deg: number;
+    radius_edge: number;
+  }[];
 }
 
 /** A mesh made by {@link Wqmesh.mesh}: copies, safe to keep and transfer. */
@@ -307,8 +337,11 @@ export interface Wqmesh {
    * @param bytes The OFF or STL file's bytes.
    * @param options See {@link MeshOptions}.
    * @returns The mesh of the interior, its classes and statistics.
-   * @throws Error with a `kind`: an input error kind (as in {@link InputErrorKind}),
-   *   "options", "limit" (out of wasm memory) or "internal".
+   * @throws Error with a `kind`: an input error kind (as in {@link InputErrorKind};
+   *   "too_large" for more than 1 GiB of input or more points or faces than
+   *   the readers accept), "options" (an option out of its range), "limit"
+   *   (the run needs more memory than `maxMemoryBytes` or the wasm memory
+   *   holds; the module stays usable) or "internal".
    */
   mesh(bytes: WqmeshInput, options?: MeshOptions): MeshResult;
 

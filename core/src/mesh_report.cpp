@@ -8,9 +8,14 @@
 namespace wqmesh {
 
 double plc_volume(const PLC& plc) {
-  // V = 1/3 sum over facets of (a point of F) . (area vector of F); the area
-  // vector of a facet is the sum over its loops (holes turn the other way).
+  // V = 1/3 sum over facets of (a point of F - g) . (area vector of F); the
+  // area vector of a facet is the sum over its loops (holes turn the other
+  // way). Any g gives V (the area vectors of a closed surface sum to zero);
+  // a vertex of the input keeps the terms small when the input lies far from
+  // the origin (coordinates of 1e8 around a unit-sized part).
   double volume = 0;
+  if (plc.vertices.empty()) return 0;
+  const Point3& g = plc.vertices[0];
   for (const PlcFacet& f : plc.facets) {
     const Point3& o = plc.vertices[f.loops[0][0]];
     for (const auto& loop : f.loops) {
@@ -24,7 +29,7 @@ double plc_volume(const PLC& plc) {
         area[1] += a[2] * b[0] - a[0] * b[2];
         area[2] += a[0] * b[1] - a[1] * b[0];
       }
-      volume += (o[0] * area[0] + o[1] * area[1] + o[2] * area[2]) / 6;
+      volume += ((o[0] - g[0]) * area[0] + (o[1] - g[1]) * area[1] + (o[2] - g[2]) * area[2]) / 6;
     }
   }
   return volume;
@@ -78,6 +83,23 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   for (const PhaseStats& p : r.phases) {
     j.begin_object();
     j.field("name", p.name).field("time_s", p.time_s).field("points_inserted", p.points_inserted);
+    j.end_object();
+  }
+  j.end_array();
+  // Every violation (skinny or sliver tet not near a small input angle), up
+  // to 1000 of them, so that they can be looked at and counted by others.
+  j.key("violation_tets").begin_array();
+  std::size_t listed = 0;
+  for (std::size_t i = 0; i < r.tet_class.size() && listed < 1000; ++i) {
+    if (r.tet_class[i] != TetClass::violation) continue;
+    ++listed;
+    const auto& t = r.mesh.tets[i];
+    const TetQuality& q = r.quality[i];
+    j.begin_object();
+    j.field("tet", i);
+    j.key("vertices").begin_array().value(t[0]).value(t[1]).value(t[2]).value(t[3]).end_array();
+    j.field("kind", q.radius_edge > options.rho0 ? "skinny" : "sliver");
+    j.field("min_dihedral_deg", q.min_dihedral_deg).field("radius_edge", q.radius_edge);
     j.end_object();
   }
   j.end_array();

@@ -67,6 +67,8 @@ for (const name of ['box.off', 'thin_wedge.off', 'spike.off', 'slit.off', 'brack
     assert.ok(Math.abs(volume - s.volume_input) <= 1e-9 * s.volume_input, `volume ${volume} vs ${s.volume_input}`);
     const violations = r.tetClass.filter((c) => c === 3).length;
     assert.equal(violations, s.violations);
+    assert.equal(s.violation_tets.length, Math.min(s.violations, 1000));
+    for (const v of s.violation_tets) assert.equal(r.tetClass[v.tet], 3, `violation_tets names tet ${v.tet}`);
     if (existsSync(cli)) {
       const n = nativeStats(model);
       assert.ok(Math.abs(n.vertices - s.vertices) <= 0.05 * n.vertices, `vertices ${s.vertices} vs native ${n.vertices}`);
