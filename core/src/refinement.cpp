@@ -415,7 +415,12 @@ void Mesher::refine() {
   for (const auto& [k, s] : segs_) seg_queue_.push_back(k);
   std::sort(seg_queue_.begin(), seg_queue_.end());
   for (const Subfacet& h : subfacets()) facet_queue_.push_back(h);
-  for (const Tet& t : tri_.finite_cells()) tet_queue_.push_back({t, nullptr});
+  {
+    std::vector<Tet> cells;
+    std::vector<CellRef> refs;
+    tri_.finite_cells(cells, refs);
+    for (std::size_t i = 0; i < cells.size(); ++i) tet_queue_.push_back({cells[i], refs[i]});
+  }
   if (!process_queues(true)) return;
   if (!opt_.pump) return;
   for (int pass = 0; pass < 100 && stop_reason_.empty(); ++pass)

@@ -206,6 +206,17 @@ std::vector<Tet> RegularTriangulation::finite_cells() const {
   return out;
 }
 
+void RegularTriangulation::finite_cells(std::vector<Tet>& out, std::vector<CellRef>& refs) const {
+  out.clear();
+  refs.clear();
+  out.reserve(impl_->rt.number_of_finite_cells());
+  refs.reserve(impl_->rt.number_of_finite_cells());
+  for (auto c = impl_->rt.finite_cells_begin(); c != impl_->rt.finite_cells_end(); ++c) {
+    out.push_back(impl_->tet_of(c));
+    refs.push_back(static_cast<CellRef>(&*c));
+  }
+}
+
 void RegularTriangulation::incident_cells(int v, std::vector<Tet>& out, std::vector<CellRef>* refs) const {
   out.clear();
   if (refs) refs->clear();

@@ -68,6 +68,8 @@ class RegularTriangulation {
 
   /// Every finite cell, positively oriented.
   std::vector<Tet> finite_cells() const;
+  /// The same cells with a CellRef each (for is_cell(t, ref), which is O(1)).
+  void finite_cells(std::vector<Tet>& out, std::vector<CellRef>& refs) const;
   /// The cells incident to v, finite or not (kInfinite in infinite ones),
   /// and, when `refs` is given, a CellRef for each.
   void incident_cells(int v, std::vector<Tet>& out, std::vector<CellRef>* refs = nullptr) const;
