@@ -32,6 +32,24 @@ MeshResult Mesher::extract() {
   for (const Subfacet& h : subfacets())
     if (!dom_.is_box_facet(h.facet)) facet_of[sorted(h.v)] = h.facet;
 
+  // A wall triangle that is no subfacet: where cocircular points of a facet
+  // make a flat tet in Del V (both diagonals of their quadrilateral are then
+  // faces), the inside cell meets the flat tet at the other diagonal than
+  // the facet's planar triangulation took. It lies in the one input facet
+  // that holds its three vertices; -1 if there is none or more than one.
+  std::vector<int> fa, fb, fc;
+  auto common_facet = [&](const Tri& f) {
+    facets_of(f[0], fa);
+    facets_of(f[1], fb);
+    facets_of(f[2], fc);
+    int found = -1;
+    for (int x : fa)
+      if (!dom_.is_box_facet(x) && std::count(fb.begin(), fb.end(), x) && std::count(fc.begin(), fc.end(), x)) {
+        if (found >= 0) return -1;
+        found = x;
+      }
+    return found;
+  };
   std::vector<int> new_id(verts_.size(), -1);
   TetMesh& mesh = r.mesh;
   bool weighted = false;
@@ -62,7 +80,7 @@ MeshResult Mesher::extract() {
       const Tri f{{t[kOutward[k][0]], t[kOutward[k][1]], t[kOutward[k][2]]}};
       mesh.boundary.push_back({{id(f[0]), id(f[1]), id(f[2])}});
       const auto it = facet_of.find(sorted(f));
-      mesh.boundary_facet.push_back(it == facet_of.end() ? -1 : it->second);
+      mesh.boundary_facet.push_back(it == facet_of.end() ? common_facet(f) : it->second);
     }
   }
   r.quality = mesh_quality(mesh);
