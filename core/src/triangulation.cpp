@@ -69,15 +69,35 @@ struct RegularTriangulation::Impl {
   mutable std::vector<Rt::Cell_handle> walk;
   bool find_edge(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Cell_handle& c, int& i, int& j) const {
     if (rt.dimension() < 3) return rt.is_edge(a, b, c, i, j);
+    return walk_star(a, [&](Rt::Cell_handle x) {
+      if (!x->has_vertex(b, j)) return false;
+      c = x;
+      i = x->index(a);
+      return true;
+    });
+  }
+  // Whether abc is a facet (as find_edge; c, i, j, k as CGAL's is_facet).
+  bool find_facet(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Vertex_handle v, Rt::Cell_handle& c, int& i,
+                  int& j, int& k) const {
+    if (rt.dimension() < 3) return rt.is_facet(a, b, v, c, i, j, k);
+    return walk_star(a, [&](Rt::Cell_handle x) {
+      if (!x->has_vertex(b, j) || !x->has_vertex(v, k)) return false;
+      c = x;
+      i = x->index(a);
+      return true;
+    });
+  }
+  // Visits the cells around a (through their faces at a) until `stop` says
+  // so; returns whether it did.
+  template <class Stop>
+  bool walk_star(Rt::Vertex_handle a, Stop&& stop) const {
     walk.clear();
     walk.push_back(a->cell());
     a->cell()->tds_data().mark_processed();
     bool found = false;
     for (std::size_t n = 0; n < walk.size() && !found; ++n) {
       const Rt::Cell_handle x = walk[n];
-      if (x->has_vertex(b, j)) {
-        c = x;
-        i = x->index(a);
+      if (stop(x)) {
         found = true;
         break;
       }
@@ -186,7 +206,7 @@ bool RegularTriangulation::is_edge(int a, int b) const {
 bool RegularTriangulation::is_facet(int a, int b, int c) const {
   Rt::Cell_handle cell;
   int i, j, k;
-  return impl_->rt.is_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k);
+  return impl_->find_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k);
 }
 
 bool RegularTriangulation::is_cell(const Tet& t) const {
@@ -270,8 +290,7 @@ bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out) const 
 bool RegularTriangulation::facet_cells(int a, int b, int c, Tet& first, Tet& second) const {
   Rt::Cell_handle cell;
   int i, j, k;
-  if (!impl_->rt.is_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k))
-    return false;
+  if (!impl_->find_facet(impl_->handle(a), impl_->handle(b), impl_->handle(c), cell, i, j, k)) return false;
   const int l = 6 - i - j - k;
   first = impl_->tet_of(cell);
   second = impl_->tet_of(cell->neighbor(l));
