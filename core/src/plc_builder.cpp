@@ -369,13 +369,16 @@ void Builder::orient() {
 /// Winding number of the closed triangulated shell `tris` around p (not on
 /// it), from the solid angles of its triangles (van Oosterom and Strackee).
 /// Rounded arithmetic: only its distance from 0 matters (0 outside, +-1 inside).
+/// Coordinates are multiplied by `scale` first, a power of two that keeps
+/// their differences and products finite (validation::power_of_two_scale of
+/// the largest coordinate).
 double winding_number(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& all,
-                      const std::vector<int>& tris, const Point3& p) {
+                      const std::vector<int>& tris, const Point3& p, double scale) {
   double total = 0;
   for (int t : tris) {
     double v[3][3], len[3];
     for (int c = 0; c < 3; ++c) {
-      for (int k = 0; k < 3; ++k) v[c][k] = pts[all[t][c]][k] - p[k];
+      for (int k = 0; k < 3; ++k) v[c][k] = pts[all[t][c]][k] * scale - p[k] * scale;
       len[c] = std::sqrt(v[c][0] * v[c][0] + v[c][1] * v[c][1] + v[c][2] * v[c][2]);
     }
     auto dot3 = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
@@ -429,6 +432,10 @@ void Builder::orient_outwards() {
           box[c][3 + i] = std::max(box[c][3 + i], pts_[v][i]);
         }
   }
+  double big = 0;
+  for (const Point3& q : pts_)
+    for (double x : q) big = std::max(big, std::fabs(x));
+  const double scale = validation::power_of_two_scale(big);
   std::size_t flipped = 0;
   bool outer_inwards = false;
   for (std::size_t c = 0; c < k; ++c) {
@@ -438,7 +445,7 @@ void Builder::orient_outwards() {
       if (d == c) continue;
       bool in_box = true;
       for (int i = 0; i < 3; ++i) in_box &= box[d][i] <= p[i] && p[i] <= box[d][3 + i];
-      if (in_box && std::fabs(winding_number(pts_, tris_, shells_[d], p)) > 0.5) ++depth;
+      if (in_box && std::fabs(winding_number(pts_, tris_, shells_[d], p, scale)) > 0.5) ++depth;
     }
     const int want = depth % 2 == 0 ? 1 : -1;
     if (sign[c] == want) continue;
@@ -501,31 +508,15 @@ std::vector<PlcFacet> Builder::merge_coplanar() {
   std::vector<std::array<char, 3>> done(n, {{0, 0, 0}});
   for (std::size_t f = 0; f < facets.size(); ++f) {
     PlcFacet& F = facets[f];
-    // Coordinates scaled by a power of two (exact) so that neither huge nor
-    // tiny inputs overflow or underflow the rounded normal.
-    double big = 0;
-    for (int t : members[f])
-      for (int v : tris_[t])
-        for (double x : pts_[v]) big = std::max(big, std::fabs(x));
-    const double scale = big > 0 ? std::ldexp(1.0, -std::ilogb(big)) : 1.0;
-    double nx = 0, ny = 0, nz = 0;
+    std::vector<std::array<int, 3>> tris;
     for (int t : members[f]) {
       F.source_faces.push_back(tri_face_[t]);
-      const Point3 &a = pts_[tris_[t][0]], &b = pts_[tris_[t][1]], &c = pts_[tris_[t][2]];
-      double u[3], v[3];
-      for (int i = 0; i < 3; ++i) {
-        u[i] = b[i] * scale - a[i] * scale;
-        v[i] = c[i] * scale - a[i] * scale;
-      }
-      nx += u[1] * v[2] - u[2] * v[1];
-      ny += u[2] * v[0] - u[0] * v[2];
-      nz += u[0] * v[1] - u[1] * v[0];
+      tris.push_back(tris_[t]);
     }
     std::sort(F.source_faces.begin(), F.source_faces.end());
     F.source_faces.erase(std::unique(F.source_faces.begin(), F.source_faces.end()),
                          F.source_faces.end());
-    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
-    if (len > 0) F.normal = {nx / len, ny / len, nz / len};
+    F.normal = validation::unit_area_vector(pts_, tris);
     for (int t0 : members[f])
       for (int k0 = 0; k0 < 3; ++k0) {
         if (done[t0][k0] || facet_of[nbr_[t0][k0]] == static_cast<int>(f)) continue;

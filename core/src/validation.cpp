@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "cgal_types.h"
+#include "exact.h"
 
 namespace wqmesh::validation {
 namespace {
@@ -23,6 +24,16 @@ std::string coords(const Point3& p) {
   return buf;
 }
 
+/// v / |v| for a finite v with a component other than 0; divided by its
+/// largest component first so that squaring neither overflows nor underflows.
+Point3 normalized(Point3 v) {
+  const double m = std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
+  for (double& x : v) x /= m;
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  for (double& x : v) x /= len;
+  return v;
+}
+
 /// Exact orientation of the projected points: > 0 for a left turn.
 int orient2(const P2& a, const P2& b, const P2& c) {
   return static_cast<int>(CGAL::orientation(a, b, c));
@@ -30,32 +41,133 @@ int orient2(const P2& a, const P2& b, const P2& c) {
 
 }  // namespace
 
+double power_of_two_scale(double big) {
+  if (!(big > 0) || !std::isfinite(big)) return 1.0;
+  return std::ldexp(1.0, std::min(-std::ilogb(big), 1022));
+}
+
+Point3 exact_unit_area_vector(const std::vector<Point3>& pts,
+                              const std::vector<std::array<int, 3>>& tris) {
+  using MP = CGAL::MP_Float;  // exact for +, - and * on doubles
+  std::array<MP, 3> sum{{MP(0), MP(0), MP(0)}};
+  for (const auto& t : tris) {
+    std::array<MP, 3> u, v;
+    for (int i = 0; i < 3; ++i) {
+      u[i] = MP(pts[t[1]][i]) - MP(pts[t[0]][i]);
+      v[i] = MP(pts[t[2]][i]) - MP(pts[t[0]][i]);
+    }
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      sum[a] = sum[a] + (u[b] * v[c] - u[c] * v[b]);
+    }
+  }
+  // Each component as m * 2^e (|m| < 1); all are brought to the exponent of
+  // the largest one, so that none overflows and only negligible ones vanish.
+  std::array<std::pair<double, int>, 3> me;
+  bool any = false;
+  int top = 0;
+  for (int a = 0; a < 3; ++a) {
+    me[a] = CGAL::to_double_exp(sum[a]);
+    if (me[a].first == 0) continue;
+    top = any ? std::max(top, me[a].second) : me[a].second;
+    any = true;
+  }
+  if (!any) return {{0, 0, 0}};
+  Point3 r{{0, 0, 0}};
+  for (int a = 0; a < 3; ++a)
+    if (me[a].first != 0) r[a] = std::ldexp(me[a].first, me[a].second - top);
+  return normalized(r);
+}
+
+Point3 unit_area_vector(const std::vector<Point3>& pts,
+                        const std::vector<std::array<int, 3>>& tris) {
+  double big = 0;
+  for (const auto& t : tris)
+    for (int v : t)
+      for (double x : pts[v]) big = std::max(big, std::fabs(x));
+  const double s = power_of_two_scale(big);
+  // Rounded sum of the cross products on the scaled coordinates, and the sum
+  // of the magnitudes of its products, which bounds its rounding error.
+  std::array<double, 3> n{{0, 0, 0}};
+  double mass = 0;
+  for (const auto& t : tris) {
+    const Point3 &a = pts[t[0]], &b = pts[t[1]], &c = pts[t[2]];
+    double u[3], v[3];
+    for (int i = 0; i < 3; ++i) {
+      u[i] = b[i] * s - a[i] * s;
+      v[i] = c[i] * s - a[i] * s;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      n[k] += u[i] * v[j] - u[j] * v[i];
+      mass += std::fabs(u[i] * v[j]) + std::fabs(u[j] * v[i]);
+    }
+  }
+  // Error of each component: a few roundings of every product and of the
+  // running sum (relative to `mass`), plus what underflow loses (absolute;
+  // scaled coordinates are below 2, so their differences below 4).
+  const double count = static_cast<double>(tris.size());
+  const double error = 2 * ((count + 8) * 0x1p-52 * mass + 64 * (count + 1) * 0x1p-1074);
+  const double m = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+  if (!(std::isfinite(m) && std::isfinite(mass) && m > 0x1p24 * error))
+    return exact_unit_area_vector(pts, tris);  // too close to call: exactly
+  if (m >= 1e-150) {
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    return {{n[0] / len, n[1] / len, n[2] / len}};
+  }
+  return normalized(n);
+}
+
 bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>& poly,
                          std::vector<std::array<int, 3>>& out) {
   const int n = static_cast<int>(poly.size());
   if (n < 3) return false;
-  // Newell normal (rounded: it only chooses the projection and its sense).
-  // Scaled by a power of two (exact) against overflow and underflow.
+  // Newell normal, rounded, to rank the axes (largest component first); it
+  // is scaled by a power of two (exact) against overflow and underflow.
   double big = 0;
   for (int v : poly)
     for (double x : pts[v]) big = std::max(big, std::fabs(x));
-  const double s = big > 0 ? std::ldexp(1.0, -std::ilogb(big)) : 1.0;
-  double nx = 0, ny = 0, nz = 0;
+  const double s = power_of_two_scale(big);
+  std::array<double, 3> nrm{{0, 0, 0}};
   for (int i = 0; i < n; ++i) {
     const Point3& p = pts[poly[i]];
     const Point3& q = pts[poly[(i + 1) % n]];
-    nx += (p[1] * s - q[1] * s) * (p[2] * s + q[2] * s);
-    ny += (p[2] * s - q[2] * s) * (p[0] * s + q[0] * s);
-    nz += (p[0] * s - q[0] * s) * (p[1] * s + q[1] * s);
+    for (int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      nrm[a] += (p[b] * s - q[b] * s) * (p[c] * s + q[c] * s);
+    }
   }
-  int axis = 2;
-  if (std::fabs(nx) >= std::fabs(ny) && std::fabs(nx) >= std::fabs(nz)) axis = 0;
-  else if (std::fabs(ny) >= std::fabs(nz)) axis = 1;
-  const double along = axis == 0 ? nx : axis == 1 ? ny : nz;
+  std::array<int, 3> rank{{0, 1, 2}};
+  auto size = [&](int a) { return std::isfinite(nrm[a]) ? std::fabs(nrm[a]) : 0.0; };
+  std::stable_sort(rank.begin(), rank.end(), [&](int a, int b) { return size(a) > size(b); });
+  // The projection drops the first axis, in that order, along which the exact
+  // Newell normal is not zero (rounding may cancel it or give it the wrong
+  // sign): the projection of a planar polygon is then an affine image of it,
+  // simple exactly when the polygon is, and its sense is the sign of that
+  // exact component.
+  int axis = -1, along = 0;
+  for (int a : rank) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    along = exact::sign([&](auto z) {
+      using NT = decltype(z);
+      NT sum = z;
+      for (int i = 0; i < n; ++i) {
+        const Point3& p = pts[poly[i]];
+        const Point3& q = pts[poly[(i + 1) % n]];
+        sum = sum + (NT(p[b]) - NT(q[b])) * (NT(p[c]) + NT(q[c]));
+      }
+      return sum;
+    });
+    if (along != 0) {
+      axis = a;
+      break;
+    }
+  }
+  if (axis < 0) return false;  // a non-planar polygon with no area vector
   // Drop `axis`; the two kept axes in cyclic order make the projection
   // counter-clockwise when the normal points along +axis, so mirror otherwise.
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  const bool mirror = !(along > 0);
+  const bool mirror = along < 0;
   std::vector<P2> q(n);
   for (int i = 0; i < n; ++i) {
     const Point3& p = pts[poly[i]];

@@ -619,6 +619,78 @@ TEST(Plc, Errors) {
   }
 }
 
+/// Found by the fuzz target build_plc's contract check: a box whose
+/// coordinates are all subnormal was rejected as a self-crossing polygon and
+/// its facets got no unit normal, because the power of two that scales the
+/// coordinates before the rounded normal overflowed to infinity. Every scale
+/// from subnormal to near DBL_MAX now gives the box's six outward unit normals.
+TEST(Plc, SubnormalAndHugeCoordinatesGiveUnitNormals) {
+  for (const double scale : {1e-310, 4.9e-324 * 4, 1e-300, 1.0, 1e300, 4e307}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    EXPECT_GE(validation::power_of_two_scale(scale) * scale, 0x1p-52);
+    EXPECT_TRUE(std::isfinite(validation::power_of_two_scale(scale)));
+    auto pts = box_points(2, 1, 1);
+    for (auto& p : pts)
+      for (double& x : p) x *= scale;
+    for (const auto& faces : {box_quads(), box_triangles()}) {
+      Warnings w;
+      PLC plc;
+      ASSERT_NO_THROW(plc = build_plc(soup_of(pts, faces), w));
+      ASSERT_EQ(plc.facets.size(), 6u);
+      EXPECT_EQ(plc.edges.size(), 12u);
+      for (const PlcFacet& F : plc.facets) {
+        // The axis of the facet is the one coordinate all its vertices share.
+        int axis = -1;
+        for (int k = 0; k < 3; ++k) {
+          bool same = true;
+          for (int v : F.loops[0]) same &= plc.vertices[v][k] == plc.vertices[F.loops[0][0]][k];
+          if (same) axis = k;
+        }
+        ASSERT_GE(axis, 0);
+        Point3 want{0, 0, 0};
+        want[axis] = plc.vertices[F.loops[0][0]][axis] > 0 ? 1 : -1;
+        EXPECT_EQ(F.normal, want);
+      }
+    }
+  }
+}
+
+/// Found by the fuzz target build_plc's contract check (inputs also in
+/// tests/fuzz/corpus/): facets with sides of very different magnitudes got a
+/// zero normal (a side of 2e-320 beside sides of 4: the rounded cross products
+/// underflowed) or one of length 0.99999 (a needle to a vertex at 4.4e159: its
+/// squared components underflowed). Every facet normal is now a unit vector
+/// within 1e-7 of the exact direction.
+TEST(Plc, FacetsWithSidesOfVeryDifferentMagnitudesGetUnitNormals) {
+  const std::vector<std::vector<int>> faces = {{4, 2, 0}, {1, 3, 5}, {0, 2, 3, 1}, {2, 4, 5, 3}, {4, 0, 1, 5}};
+  const std::vector<std::vector<Point3>> inputs = {
+      {{0, 0, 0}, {0, 0, 2e-320}, {4, 0, 0}, {4, 0, 2}, {4, 3, 5}, {4, 5, 8}},
+      {{0, 0, 0}, {0, 0, 4.4444444444444442e+159}, {4, 0, 0}, {4, 0, 2}, {4, 0.703125, 0},
+       {4, 0.69999999999999996, 125}}};
+  for (const auto& pts : inputs) {
+    Warnings w;
+    PLC plc;
+    ASSERT_NO_THROW(plc = build_plc(soup_of(pts, faces), w));
+    ASSERT_EQ(plc.facets.size(), 6u);
+    for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+      const PlcFacet& F = plc.facets[f];
+      EXPECT_NEAR(std::sqrt(dot(F.normal, F.normal)), 1.0, 1e-12) << "facet " << f;
+      std::vector<std::array<int, 3>> fan;
+      for (std::size_t i = 1; i + 1 < F.loops[0].size(); ++i)
+        fan.push_back({F.loops[0][0], F.loops[0][i], F.loops[0][i + 1]});
+      const Point3 exact = validation::exact_unit_area_vector(plc.vertices, fan);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(F.normal[k], exact[k], 1e-7) << "facet " << f;
+    }
+  }
+  // The exact fallback on its own: a needle whose rounded cross product is
+  // below its error bound, and a triangle whose cross product underflows.
+  const std::vector<Point3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1e-320, 0}, {1e-200, 0, 0}, {0, 1e-200, 0}};
+  EXPECT_EQ(validation::unit_area_vector(p, {{{0, 1, 2}}}), (Point3{0, 0, 1}));
+  EXPECT_EQ(validation::exact_unit_area_vector(p, {{{0, 3, 4}}}), (Point3{0, 0, 1}));
+  EXPECT_EQ(validation::exact_unit_area_vector(p, {{{0, 4, 3}}}), (Point3{0, 0, -1}));
+  EXPECT_EQ(validation::exact_unit_area_vector(p, {{{0, 1, 1}}}), (Point3{0, 0, 0}));
+}
+
 /// Pairs of triangles through the exact self-intersection test (validation.h):
 /// sharing an edge, a vertex or nothing; touching or not.
 TEST(Plc, SelfIntersectionPairs) {
