@@ -222,13 +222,14 @@ export interface MeshOptions {
   boxMargin?: number;
   /**
    * The most bytes of wasm memory the call's C++ allocations may hold at once,
-   * in [65536, 4294967296] (default 3221225472, 3 GiB). An allocation beyond
-   * it fails, the run stops and {@link Wqmesh.mesh} throws an Error of kind
-   * `"limit"` naming the phase and the vertex count reached; its memory is
-   * freed and the module stays usable. The module's memory grows up to 4 GB
-   * (or less where the browser gives less): a run that needs more, with a cap
-   * at 4294967296, throws the same `"limit"` error. `stats.peak_memory_mb`
-   * tells what a finished run held at most.
+   * in [65536, 4294967296] (default 3221225472, 3 GiB). A run that goes
+   * beyond it stops (reading the input and making the output arrays refuse
+   * the allocation at once; the mesher stops at its next progress call, within
+   * 256 insertions) and {@link Wqmesh.mesh} throws an Error of kind `"limit"`
+   * naming the phase and the vertex count reached; its memory is freed and the
+   * module stays usable. The module's memory grows up to 4 GB (or less where
+   * the browser gives less): a run that needs more throws the same `"limit"`
+   * error. `stats.peak_memory_mb` tells what a finished run held at most.
    */
   maxMemoryBytes?: number;
   /**

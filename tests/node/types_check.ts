@@ -12,10 +12,12 @@ async function use(bytes: Uint8Array): Promise<number> {
     sliverAngle: 3,
     pump: true,
     maxVertices: 100000,
+    maxMemoryBytes: 2 ** 30,
     onProgress: (phase: string, fraction: number, vertices: number) => fraction < 1 && phase !== '' && vertices >= 0,
   });
   const bins: number = mesh.stats.dihedral_bins['0-3'] + mesh.stats.radius_edge_bins['>2.2'];
-  return bins + mesh.tets.length + mesh.vertices.length + mesh.tetClass.length + w.version().length;
+  const peak: number = mesh.stats.peak_memory_mb ?? 0;
+  return bins + peak + mesh.tets.length + mesh.vertices.length + mesh.tetClass.length + w.version().length;
 }
 
 export default use;
