@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # wqmesh: installs what the build and the tests need, and only what is missing
-# (idempotent): Debian packages for the native and wasm builds, then the npm
-# packages of package-lock.json. Chromium (browser tests) is not installed yet.
+# (idempotent): Debian packages for the native, wasm, fuzz (clang-14 with
+# libFuzzer) and sanitizer builds, then the npm packages of package-lock.json.
+# Chromium (browser tests) is not installed yet.
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -23,10 +24,22 @@ need_path /usr/include/mpfr.h libmpfr-dev
 need_cmd cmake cmake
 need_cmd make make
 need_cmd g++ g++
+# The fuzz targets (tests/fuzz): clang-14, and libFuzzer's runtime, which is in
+# libclang-rt-14-dev, only a Recommends of clang-14 (any 14.x patch version).
+need_cmd clang++-14 clang-14
+if ! compgen -G "/usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-$(uname -m).a" >/dev/null; then
+  missing+=(libclang-rt-14-dev)
+fi
+# g++'s AddressSanitizer and UndefinedBehaviorSanitizer runtimes (build/asan);
+# normally pulled in by g++ through libgcc-12-dev.
+if ! compgen -G "/usr/lib/$(uname -m)-linux-gnu/libasan.so.*" >/dev/null; then missing+=(libasan8); fi
+if ! compgen -G "/usr/lib/$(uname -m)-linux-gnu/libubsan.so.*" >/dev/null; then missing+=(libubsan1); fi
 if [ ! -e /usr/src/googletest ] && [ ! -e /usr/include/gtest/gtest.h ]; then
   missing+=(libgtest-dev)
 fi
 need_cmd node nodejs
+# GNU time: peak memory in examples/node/benchmark.mjs (the shell keyword is not it).
+need_path /usr/bin/time time
 need_cmd npm npm
 
 # De-duplicate, keeping the order.

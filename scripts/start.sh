@@ -17,7 +17,9 @@ for arg in "$@"; do
 done
 
 bash scripts/setup.sh
-bash scripts/build.sh
+# The command line and the wasm module; the fuzz and sanitizer builds are for
+# the tests (scripts/test.sh).
+bash scripts/build.sh native wasm
 
 model=examples/models/spike.off
 mkdir -p build/start

@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # wqmesh: sets up, builds, then runs every test: the native GoogleTest tests
-# (ctest) and the Node tests (wasm module vs command line). Exits non-zero if
-# any of them fails; both suites run even when the first one fails.
+# (ctest), the Node tests (wasm module vs command line), the GoogleTest tests
+# again under AddressSanitizer and UndefinedBehaviorSanitizer (build/asan,
+# the project's own small models: the tests that read ../shared/models are
+# left out) and each libFuzzer target of the input path for 20 s
+# (scripts/fuzz.sh). Exits non-zero if any of them fails; every suite runs even
+# when an earlier one fails.
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -14,6 +18,18 @@ echo "test: ctest --test-dir build/native --output-on-failure -j2"
 ctest --test-dir build/native --output-on-failure -j2 || status=1
 echo "test: node --test tests/node/"
 node --test tests/node/ || status=1
+
+# Sanitizers: any report aborts its test (-fno-sanitize-recover, halt_on_error).
+# build/asan's tests see no ../shared/models (tests/native/CMakeLists.txt), so
+# the tests of those larger models skip; every other test runs, on the
+# project's own small models.
+echo "test: ctest --test-dir build/asan --output-on-failure -j2  (ASan + UBSan, small models)"
+ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:detect_stack_use_after_return=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}" \
+UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}" \
+  ctest --test-dir build/asan --output-on-failure -j2 || status=1
+
+echo "test: scripts/fuzz.sh 20  (libFuzzer, 20 s per target)"
+bash scripts/fuzz.sh 20 || status=1
 
 if [ "$status" -ne 0 ]; then
   echo "test: FAILED" >&2

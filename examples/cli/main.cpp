@@ -1,15 +1,19 @@
 // wqmesh: the native command line.
 //   wqmesh check IN [--compact] [--box-margin M]
 //   wqmesh mesh IN -o OUT.(mesh|vtu|ele) [--stats OUT.json] [options]
+//   wqmesh measure MESH.(mesh|ele) [--input IN] [--json]
 // See kUsage for the options and the exit codes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,8 +22,11 @@
 
 #include <sys/resource.h>
 
+#include "wqmesh/json.h"
+#include "wqmesh/mesh_reader.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/output.h"
+#include "wqmesh/quality.h"
 #include "wqmesh/report.h"
 
 namespace {
@@ -35,7 +42,8 @@ constexpr const char* kUsage =
     "      warnings on stderr. --compact prints the JSON on one line; --box-margin\n"
     "      sets the margin of the bounding box B as a fraction of the input's\n"
     "      largest extent (default 0.5).\n"
-    "      Exit code 0: valid input; 2: invalid input (message on stderr);\n"
+    "      Exit code 0: valid input; 2: invalid input (message on stderr; an\n"
+    "      input beyond 1 GiB, 5e6 points or 1e7 faces is too_large);\n"
     "      1: usage or internal error.\n"
     "  mesh IN -o OUT [--stats STATS.json] [--rho R] [--sliver-angle DEG]\n"
     "       [--no-pump] [--max-vertices N] [--max-size H] [--box-margin M] [--quiet]\n"
@@ -51,6 +59,17 @@ constexpr const char* kUsage =
     "      2: invalid input; 3: stopped by the vertex limit (the mesh is written\n"
     "      only if it conforms to the input). --measure-floor also times a plain\n"
     "      Delaunay triangulation of the final vertex set (ratio_to_delaunay).\n"
+    "  measure MESH [--input IN] [--json]\n"
+    "      Measure a tetrahedral mesh made by any mesher with wqmesh's quality\n"
+    "      module. MESH is Medit (.mesh) or TetGen (.ele or .node, the other file\n"
+    "      beside it). Prints the vertices used by tets, the tets, the smallest\n"
+    "      dihedral angle, the tets whose smallest dihedral angle is below 3, 5\n"
+    "      and 10 degrees, the tets with R/l above 2.2 (unweighted) and, with\n"
+    "      --input, the relative volume error against the polyhedron IN. The tets\n"
+    "      are first oriented by majority (meshers differ in convention). --json\n"
+    "      prints one JSON object on one line.\n"
+    "      Exit code 0: measured; 2: unreadable mesh or invalid IN (message on\n"
+    "      stderr); 1: usage or internal error.\n"
     "  --help, --version\n";
 
 int usage_error(const std::string& message) {
@@ -63,6 +82,42 @@ bool parse_double(const std::string& text, double& out) {
   errno = 0;
   out = std::strtod(text.c_str(), &end);
   return errno == 0 && end != text.c_str() && *end == '\0';
+}
+
+// Reads the bytes of an input polyhedron, at most InputLimits::max_bytes of
+// them: a larger file (by its size, before reading, or by what a pipe or a
+// device yields) is refused as too_large without being read in full. On
+// failure fills `error` (kind io or too_large, as check_polyhedron reports
+// errors) and returns false.
+bool read_input(const std::string& path, std::string& data, wqmesh::CheckResult& error) {
+  const std::size_t max_bytes = wqmesh::InputLimits().max_bytes;
+  error.valid = false;
+  auto fail = [&](const char* kind, const std::string& message) {
+    error.error_kind = kind;
+    error.error = message;
+    return false;
+  };
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return fail("io", "cannot read '" + path + "': it is a folder");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail("io", "cannot open '" + path + "': " + std::strerror(errno));
+  const auto too_large = [&](const std::string& size) {
+    return fail("too_large", "'" + path + "' has " + size + " bytes, beyond the limit of " +
+                                 std::to_string(max_bytes));
+  };
+  if (std::filesystem::is_regular_file(path, ec)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > max_bytes) return too_large(std::to_string(size));
+  }
+  data.clear();
+  std::vector<char> chunk(1 << 16);
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    data.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
+    if (data.size() > max_bytes) return too_large("more than " + std::to_string(max_bytes));
+  }
+  if (in.bad()) return fail("io", "cannot read '" + path + "'");
+  return true;
 }
 
 int run_check(const std::vector<std::string>& args) {
@@ -88,14 +143,13 @@ int run_check(const std::vector<std::string>& args) {
   }
   if (path.empty()) return usage_error("check needs an input file");
 
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::cerr << "wqmesh: cannot open '" << path << "': " << std::strerror(errno) << "\n";
+  std::string data;
+  wqmesh::CheckResult unread;
+  if (!read_input(path, data, unread)) {
+    std::cout << wqmesh::check_json(unread, pretty) << "\n";
+    std::cerr << "wqmesh: " << path << ": " << unread.error_kind << ": " << unread.error << "\n";
     return 2;
   }
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  const std::string data = bytes.str();
 
   const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, options);
   for (const std::string& w : result.warnings) std::cerr << "wqmesh: warning: " << w << "\n";
@@ -171,8 +225,9 @@ int run_mesh(const std::vector<std::string>& args) {
     return usage_error("the output '" + out + "' must end in .mesh, .vtu or .ele");
 
   std::string data;
-  if (!read_file(path, data)) {
-    std::cerr << "wqmesh: cannot open '" << path << "': " << std::strerror(errno) << "\n";
+  wqmesh::CheckResult unread;
+  if (!read_input(path, data, unread)) {
+    std::cerr << "wqmesh: " << path << ": " << unread.error_kind << ": " << unread.error << "\n";
     return 2;
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -250,6 +305,99 @@ int run_mesh(const std::vector<std::string>& args) {
   return 0;
 }
 
+// Measures a mesh written by any mesher (Medit or TetGen files) with the
+// quality module, so that every tool is judged by the same code.
+int run_measure(const std::vector<std::string>& args) {
+  std::string path, input;
+  bool json = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--input") {
+      if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1][0] == '-')
+        return usage_error("--input needs the polyhedron file (OFF or STL) the mesh was made from");
+      input = args[++i];
+    } else if (a == "--json") {
+      json = true;
+    } else if (!a.empty() && a[0] == '-') {
+      return usage_error("unknown option '" + a + "' for measure");
+    } else if (path.empty()) {
+      path = a;
+    } else {
+      return usage_error("measure takes one mesh file, got '" + path + "' and '" + a + "'");
+    }
+  }
+  if (path.empty()) return usage_error("measure needs a mesh file (.mesh, .ele or .node)");
+
+  wqmesh::TetMesh mesh;
+  try {
+    mesh = wqmesh::read_tet_mesh_file(path);
+  } catch (const wqmesh::InputError& e) {
+    std::cerr << "wqmesh: " << wqmesh::error_kind_name(e.kind()) << ": " << e.what() << "\n";
+    return 2;
+  }
+  double volume_input = std::nan("");
+  if (!input.empty()) {
+    std::string data;
+    wqmesh::CheckResult unread;
+    if (!read_input(input, data, unread)) {
+      std::cerr << "wqmesh: " << input << ": " << unread.error_kind << ": " << unread.error << "\n";
+      return 2;
+    }
+    const wqmesh::CheckResult in = wqmesh::check_polyhedron(data.data(), data.size());
+    if (!in.valid) {
+      std::cerr << "wqmesh: " << input << ": " << in.error_kind << ": " << in.error << "\n";
+      return 2;
+    }
+    volume_input = wqmesh::plc_volume(in.plc);
+  }
+  const bool flipped = wqmesh::orient_tets_by_majority(mesh);
+  const wqmesh::MeshStats s = wqmesh::mesh_stats(mesh, wqmesh::mesh_quality(mesh));
+  const std::size_t below3 = s.dihedral_bins[0], below5 = below3 + s.dihedral_bins[1],
+                    below10 = below5 + s.dihedral_bins[2];
+  const double error = std::isnan(volume_input) ? volume_input : std::fabs(s.volume - volume_input) / volume_input;
+
+  wqmesh::JsonWriter j(false);
+  j.begin_object();
+  j.field("mesh", path);
+  j.field("format", ends_with(path, ".mesh") ? "medit" : "tetgen");
+  j.field("vertices", wqmesh::used_vertex_count(mesh));
+  j.field("file_vertices", mesh.vertices.size());
+  j.field("tets", mesh.tets.size());
+  j.field("orientation_flipped", flipped);
+  j.field("inverted", s.inverted);
+  j.field("min_dihedral_deg", s.min_dihedral_deg);
+  j.field("max_dihedral_deg", s.max_dihedral_deg);
+  j.field("dihedral_below_3", below3);
+  j.field("dihedral_below_5", below5);
+  j.field("dihedral_below_10", below10);
+  j.field("radius_edge_above_2_2", s.radius_edge_bins[2]);
+  j.field("max_radius_edge", s.max_radius_edge);
+  j.field("slivers", s.slivers);
+  j.field("volume_mesh", s.volume);
+  j.key("volume_input");
+  if (std::isnan(volume_input)) j.null(); else j.value(volume_input);
+  j.key("relative_volume_error");
+  if (std::isnan(error)) j.null(); else j.value(error);
+  j.end_object();
+  if (json) {
+    std::cout << j.str() << "\n";
+    return 0;
+  }
+  std::cout << "mesh                   " << path << "\n"
+            << "vertices               " << wqmesh::used_vertex_count(mesh) << " (" << mesh.vertices.size()
+            << " in the file)\n"
+            << "tets                   " << mesh.tets.size() << (flipped ? " (orientation flipped)" : "") << "\n"
+            << "inverted               " << s.inverted << "\n"
+            << "min dihedral (deg)     " << s.min_dihedral_deg << "\n"
+            << "tets below 3/5/10 deg  " << below3 << " / " << below5 << " / " << below10 << "\n"
+            << "tets with R/l > 2.2    " << s.radius_edge_bins[2] << "\n"
+            << "volume                 " << s.volume << "\n";
+  if (!std::isnan(error))
+    std::cout << "input volume           " << volume_input << "\n"
+              << "relative volume error  " << error << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -268,7 +416,11 @@ int main(int argc, char** argv) {
     }
     if (command == "check") return run_check(args);
     if (command == "mesh") return run_mesh(args);
+    if (command == "measure") return run_measure(args);
     return usage_error("unknown command '" + command + "'");
+  } catch (const std::bad_alloc&) {
+    std::cerr << "wqmesh: out of memory: lower --max-vertices\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "wqmesh: internal error: " << e.what() << "\n";
     return 1;
