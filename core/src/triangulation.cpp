@@ -212,10 +212,10 @@ bool RegularTriangulation::is_facet(int a, int b, int c) const {
 bool RegularTriangulation::is_cell(const Tet& t) const {
   for (int v : t)
     if (v < 0) return false;
-  Rt::Cell_handle c;
-  int i, j, k, l;
-  return impl_->rt.is_cell(impl_->handle(t[0]), impl_->handle(t[1]), impl_->handle(t[2]),
-                           impl_->handle(t[3]), c, i, j, k, l);
+  if (impl_->rt.dimension() < 3) return false;
+  const Rt::Vertex_handle b = impl_->handle(t[1]), c = impl_->handle(t[2]), d = impl_->handle(t[3]);
+  return impl_->walk_star(impl_->handle(t[0]),
+                          [&](Rt::Cell_handle x) { return x->has_vertex(b) && x->has_vertex(c) && x->has_vertex(d); });
 }
 
 std::vector<Tet> RegularTriangulation::finite_cells() const {
