@@ -143,12 +143,18 @@ PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis) {
 MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
                            const ProgressCallback& progress) {
   using clock = std::chrono::steady_clock;
-  const PointEstimate need = estimate_edge_points(plc, analysis);
-  if (need.points > double(options.max_vertices)) {
-    // Hopeless within the budget: say so at once instead of refining for
-    // minutes towards the limit.
+  // Runs that cannot fit the vertex limit are refused before meshing, with
+  // the reason, instead of refining for minutes towards the limit.
+  auto refuse = [&](const std::string& message) {
     MeshResult r;
     r.stopped = "limit";
+    r.stop_message = message;
+    r.input_points = plc.vertices.size();
+    r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
+    return r;
+  };
+  const PointEstimate need = estimate_edge_points(plc, analysis);
+  if (need.points > double(options.max_vertices)) {
     const PlcEdge& e1 = plc.edges[need.edge1];
     const PlcEdge& e2 = plc.edges[need.edge2];
     char text[400];
@@ -157,12 +163,20 @@ MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshO
                   "a conforming mesh needs at least about %.3g vertices along them, more than the vertex limit %zu",
                   need.edge1, e1.a, e1.b, need.edge2, e2.a, e2.b, need.vertex, need.degrees, need.points,
                   options.max_vertices);
-    r.stop_message = text;
-    r.input_points = plc.vertices.size();
-    r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
-    return r;
+    return refuse(text);
   }
   const mesher::Domain domain(plc, analysis);
+  // INITIALIZE's vertex count is known in advance (section 4.1); each later
+  // phase stops at the limit by itself.
+  const std::size_t initial = domain.initialize_points();
+  if (initial > options.max_vertices) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "INITIALIZE alone inserts %zu vertices (the input vertices and the bounding box corners, the "
+                  "vertex-ball points and the SOS splits of %zu sharp vertices), more than the vertex limit %zu",
+                  initial, analysis.sharp_vertices.size(), options.max_vertices);
+    return refuse(text);
+  }
   mesher::Mesher m(domain, options, progress);
   std::vector<PhaseStats> phases;
   std::size_t last_count = 0;

@@ -63,6 +63,17 @@ struct TriHash {
   }
 };
 
+// ---- Shield sectors (section 4.1) ----------------------------------------------
+/// The sector of facet `facet` at sharp vertex u inside the vertex ball:
+/// points u + r (cos t e1 + sin t e2), t in [0, span], t = 0 on the first
+/// edge of the sector, t = span on the second.
+struct Sector {
+  int u = -1, facet = -1;
+  Point3 center, e1, e2;
+  double r = 0, span = 0;
+  Point3 at(double t) const;
+};
+
 // ---- P: the input PLC with the bounding box B (section 2) --------------------
 struct Domain {
   PLC p;  ///< input elements first, then B's 8 vertices, 12 edges, 6 facets
@@ -86,6 +97,15 @@ struct Domain {
   /// over its loops).
   bool inside_facet(int f, const Point3& x) const;
   bool facet_has_vertex(int f, int v) const;
+  /// The sector of facet f at the sharp vertex u, whose loop runs prev, u,
+  /// next: it turns counter-clockwise about the facet normal from the edge
+  /// u-next (t = 0) to the edge u-prev (t = span), inside the vertex ball.
+  Sector sector(int u, int f, int prev, int next) const;
+  /// The number of vertices INITIALIZE inserts (section 4.1): the vertices of
+  /// P and B, one ball point per edge end at a sharp vertex, and one SOS split
+  /// per sector of angle pi or more. Known before meshing, so a vertex limit
+  /// below it is refused at once.
+  std::size_t initialize_points() const;
 };
 
 // ---- Mesh vertices -------------------------------------------------------------
@@ -98,17 +118,6 @@ struct MVertex {
   int sector = -1;   ///< on a vertex-ball arc (shield subsegment endpoint)
   double angle = 0;  ///< its angle on that arc
   int ball = -1;     ///< the sharp vertex u when the vertex lies on the sphere of û
-};
-
-// ---- Shield sectors (section 4.1) ----------------------------------------------
-/// The sector of facet `facet` at sharp vertex u inside the vertex ball:
-/// points u + r (cos t e1 + sin t e2), t in [0, span], t = 0 on the first
-/// edge of the sector, t = span on the second.
-struct Sector {
-  int u = -1, facet = -1;
-  Point3 center, e1, e2;
-  double r = 0, span = 0;
-  Point3 at(double t) const;
 };
 
 // ---- Subsegments ---------------------------------------------------------------

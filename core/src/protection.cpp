@@ -174,6 +174,37 @@ bool Domain::inside_facet(int f, const Point3& x) const {
   return inside;
 }
 
+Sector Domain::sector(int u, int f, int prev, int next) const {
+  const Point3 n = frames[f].n;
+  Sector s;
+  s.u = u;
+  s.facet = f;
+  s.center = p.vertices[u];
+  s.r = ball_radius[u];
+  Point3 d1 = sub(p.vertices[next], s.center);
+  d1 = sub(d1, mul(n, dot(d1, n)));
+  s.e1 = mul(d1, 1 / std::sqrt(dot(d1, d1)));
+  s.e2 = cross(n, s.e1);
+  const Point3 d2 = sub(p.vertices[prev], s.center);
+  double span = std::atan2(dot(d2, s.e2), dot(d2, s.e1));
+  if (span <= 0) span += 2 * kPi;
+  s.span = span;
+  return s;
+}
+
+std::size_t Domain::initialize_points() const {
+  std::size_t n = p.vertices.size();
+  for (int u = 0; u < static_cast<int>(p.vertices.size()); ++u) {
+    if (ball_radius[u] <= 0) continue;
+    n += vertex_edges[u].size();
+    for (int f : vertex_facets[u])
+      for (const auto& loop : p.facets[f].loops)
+        for (std::size_t i = 0, m = loop.size(); i < m; ++i)
+          if (loop[i] == u && sector(u, f, loop[(i + m - 1) % m], loop[(i + 1) % m]).span >= kPi) ++n;
+  }
+  return n;
+}
+
 bool Domain::facet_has_vertex(int f, int v) const {
   return std::binary_search(vertex_facets[v].begin(), vertex_facets[v].end(), f);
 }
@@ -240,7 +271,6 @@ void Mesher::initialize() {
     const double r = dom_.ball_radius[u];
     if (r <= 0) continue;
     for (int f : dom_.vertex_facets[u]) {
-      const Point3 n = dom_.frames[f].n;
       for (const auto& loop : P.facets[f].loops) {
         const std::size_t m = loop.size();
         for (std::size_t i = 0; i < m; ++i) {
@@ -248,19 +278,7 @@ void Mesher::initialize() {
           const int prev = loop[(i + m - 1) % m], next = loop[(i + 1) % m];
           // The facet lies to the left of its loops seen from outside, so its
           // sector at u turns counter-clockwise (about n) from next to prev.
-          Sector s;
-          s.u = u;
-          s.facet = f;
-          s.center = P.vertices[u];
-          s.r = r;
-          Point3 d1 = sub(P.vertices[next], s.center);
-          d1 = sub(d1, mul(n, dot(d1, n)));
-          s.e1 = mul(d1, 1 / std::sqrt(dot(d1, d1)));
-          s.e2 = cross(n, s.e1);
-          const Point3 d2 = sub(P.vertices[prev], s.center);
-          double span = std::atan2(dot(d2, s.e2), dot(d2, s.e1));
-          if (span <= 0) span += 2 * kPi;
-          s.span = span;
+          const Sector s = dom_.sector(u, f, prev, next);
           const int sid = static_cast<int>(sectors_.size());
           sectors_.push_back(s);
           vertex_sectors_[u].push_back(sid);
@@ -270,9 +288,9 @@ void Mesher::initialize() {
           shield.b = ball_point.at({u, e_prev});
           shield.sector = sid;
           shield.ta = 0;
-          shield.tb = span;
+          shield.tb = s.span;
           add_segment(shield);
-          if (span >= kPi) insert(splite(shield), 0);
+          if (s.span >= kPi) insert(splite(shield), 0);
         }
       }
     }

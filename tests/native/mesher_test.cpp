@@ -459,6 +459,42 @@ struct Stage {
   }
 };
 
+// INITIALIZE's vertex count is known before it runs (section 4.1), so a vertex
+// limit below it is refused at once with the reason, and a limit just above it
+// stops the next phase within one insertion step of the limit.
+TEST(MesherRules, InitializeCountIsKnownAndALimitBelowItIsRefused) {
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "spike.off", "thin_wedge.off", "edge_facet.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  std::size_t with_sos = 0;
+  for (const auto& file : files) {
+    SCOPED_TRACE(file);
+    const Input in = load(file);
+    Stage st(in, false);
+    const std::size_t n = st.dom.initialize_points();
+    ASSERT_FALSE(in.analysis.sharp_vertices.empty());
+    EXPECT_EQ(n, st.m.vertices().size());
+    std::size_t ball_points = 0;
+    for (int u : in.analysis.sharp_vertices) ball_points += st.dom.vertex_edges[u].size();
+    with_sos += n > st.dom.p.vertices.size() + ball_points;
+    MeshOptions o;
+    o.max_vertices = n - 1;
+    const MeshResult refused = mesh_polyhedron(in.plc, in.analysis, o);
+    EXPECT_EQ(refused.stopped, "limit");
+    EXPECT_NE(refused.stop_message.find("INITIALIZE alone inserts " + std::to_string(n) + " vertices"),
+              std::string::npos)
+        << refused.stop_message;
+    EXPECT_TRUE(refused.mesh.tets.empty());
+    EXPECT_TRUE(refused.phases.empty());
+    o.max_vertices = n + 3;
+    const MeshResult limited = mesh_polyhedron(in.plc, in.analysis, o);
+    EXPECT_EQ(limited.stopped, "limit");
+    EXPECT_NE(limited.stop_message.find("reached in conform"), std::string::npos) << limited.stop_message;
+    EXPECT_GE(limited.all_vertices, o.max_vertices);
+    EXPECT_LE(limited.all_vertices, o.max_vertices + 64);
+  }
+  EXPECT_GE(with_sos, 1u) << "no model here has a sector of pi or more at a sharp vertex";
+}
+
 TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex) {
   Stage st(from_off(kWedge), false);
   const Input& in = st.in;

@@ -125,7 +125,10 @@ PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis);
 /// Meshes the polyhedron bounded by `plc` (validated by build_plc, analysed by
 /// analyze) with WQMESH. When estimate_edge_points already exceeds
 /// options.max_vertices, returns at once with stopped = "limit" and a
-/// stop_message naming the two edges (no mesh). Deterministic: the same input and options give the
+/// stop_message naming the two edges (no mesh); likewise when INITIALIZE
+/// alone would insert more than options.max_vertices vertices. Otherwise a
+/// run never holds more than options.max_vertices vertices plus the few one
+/// insertion step adds. Deterministic: the same input and options give the
 /// same mesh. Throws std::runtime_error on an internal failure.
 MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options = {},
                            const ProgressCallback& progress = {});
