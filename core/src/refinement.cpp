@@ -63,17 +63,37 @@ void Mesher::enqueue_around(int v) {
   std::unordered_set<Tri, TriHash> seen;
   std::vector<int> fs;
   std::vector<Tri> around;
+  // The subfacets at v are new (in its facets' planar triangulations) and
+  // may be missing from Del V whatever their vertices. The cheap tests come
+  // first: lies_in_facet runs once per candidate.
+  auto consider = [&](int f, const Tri& t) {
+    if (seen.insert(sorted(t)).second && lies_in_facet(f, t)) facet_queue_.push_back({f, t});
+  };
+  // A vertex of the ring may be the apex of a long fan in a facet (its far
+  // edge split finely, as between nearly touching edges): walking its whole
+  // star on every insertion nearby would make refinement quadratic, so its
+  // triangles are then found from its edges to the other ring vertices.
+  constexpr std::size_t kFan = 48;
+  std::vector<Tri> pair;
   for (int x : ring) {
     facets_of(x, fs);
     for (int f : fs) {
-      facet_dt_[f].incident_triangles(x, around);
-      // The subfacets at v are new (in its facets' planar triangulations)
-      // and may be missing from Del V whatever their vertices. The cheap
-      // tests first: lies_in_facet runs once per candidate.
-      for (const Tri& t : around)
-        if ((x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) && seen.insert(sorted(t)).second &&
-            lies_in_facet(f, t))
-          facet_queue_.push_back({f, t});
+      bool whole_star = true;
+      if (x == v)
+        facet_dt_[f].incident_triangles(x, around);
+      else
+        whole_star = facet_dt_[f].incident_triangles(x, around, kFan);
+      if (whole_star) {
+        for (const Tri& t : around)
+          if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
+        continue;
+      }
+      for (int y : ring) {
+        if (y == x || y == v) continue;
+        facet_dt_[f].edge_triangles(x, y, pair);
+        for (const Tri& t : pair)
+          if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
+      }
     }
   }
   if (phase_ == Phase::refine)

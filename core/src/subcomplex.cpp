@@ -97,13 +97,12 @@ void Mesher::subfacets_at(int f, int v, std::vector<Tri>& out) const {
 }
 
 bool Mesher::is_subfacet(int f, const Tri& t) const {
-  // A triangle of f's planar triangulation (found among those at t[0]), then
-  // in f: the costlier test runs on that one triangle only.
+  // A triangle of f's planar triangulation (found among the two on its edge
+  // t[0] t[1]), then in f: the costlier test runs on that one triangle only.
   std::vector<Tri> around;
-  facet_dt_[f].incident_triangles(t[0], around);
-  const Tri st = sorted(t);
+  facet_dt_[f].edge_triangles(t[0], t[1], around);
   for (const Tri& u : around)
-    if (sorted(u) == st) return lies_in_facet(f, u);
+    if (u[0] == t[2] || u[1] == t[2] || u[2] == t[2]) return lies_in_facet(f, u);
   return false;
 }
 

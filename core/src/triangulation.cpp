@@ -399,6 +399,51 @@ void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
   } while (++f != done);
 }
 
+bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const {
+  out.clear();
+  const auto it = impl_->by_id.find(id);
+  if (it == impl_->by_id.end() || impl_->dt.dimension() < 2) return true;
+  auto f = impl_->dt.incident_faces(it->second), done = f;
+  if (f == nullptr) return true;
+  std::size_t seen = 0;
+  do {
+    if (++seen > cap) return false;
+    if (!impl_->dt.is_infinite(f))
+      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+  } while (++f != done);
+  return true;
+}
+
+void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const {
+  out.clear();
+  if (a == b || impl_->dt.dimension() < 2) return;
+  const auto ia = impl_->by_id.find(a), ib = impl_->by_id.find(b);
+  if (ia == impl_->by_id.end() || ib == impl_->by_id.end()) return;
+  const Dt2::Vertex_handle va = ia->second, vb = ib->second;
+  // Walk the star of a looking for b and the star of b looking for a, one
+  // face of each in turn; the first walk to find the edge wins, and the first
+  // to end without it proves there is no edge ab.
+  auto fa = impl_->dt.incident_faces(va), done_a = fa;
+  auto fb = impl_->dt.incident_faces(vb), done_b = fb;
+  if (fa == nullptr || fb == nullptr) return;
+  Dt2::Face_handle hit;
+  bool more_a = true, more_b = true;
+  while (hit == Dt2::Face_handle() && more_a && more_b) {
+    if (fa->has_vertex(vb)) hit = fa;
+    more_a = ++fa != done_a;
+    if (hit == Dt2::Face_handle()) {
+      if (fb->has_vertex(va)) hit = fb;
+      more_b = ++fb != done_b;
+    }
+  }
+  if (hit == Dt2::Face_handle()) return;
+  // The edge's two faces: hit and its neighbour across the edge.
+  const int i = 3 - hit->index(va) - hit->index(vb);
+  for (const Dt2::Face_handle& g : {hit, hit->neighbor(i)})
+    if (!impl_->dt.is_infinite(g))
+      out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
+}
+
 std::size_t PlanarDelaunay::size() const { return impl_->dt.number_of_vertices(); }
 
 }  // namespace wqmesh

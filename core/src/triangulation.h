@@ -137,6 +137,14 @@ class PlanarDelaunay {
   std::vector<std::array<int, 3>> triangles() const;
   /// The finite triangles incident to the point with caller id `id`.
   void incident_triangles(int id, std::vector<std::array<int, 3>>& out) const;
+  /// The same, unless the point has more than `cap` incident triangles (the
+  /// apex of a long fan): then returns false after O(cap) work, `out` unusable.
+  bool incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const;
+  /// The finite triangles (none, one or two, counter-clockwise) that hold the
+  /// edge between the points with ids a and b; none if either point is not
+  /// here or ab is no edge. O(the smaller of the two degrees): the stars of a
+  /// and b are walked in turn, so a fan apex costs no more than its partner.
+  void edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const;
   std::size_t size() const;
 
  private:

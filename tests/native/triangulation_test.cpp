@@ -126,6 +126,38 @@ TEST(Triangulation, PlanarDelaunayOfASquareWithCentre) {
   EXPECT_EQ(around.size(), 4u);
 }
 
+// A fan: the apex 0 above a finely split base edge. The capped star walk
+// gives up on the apex and not on a base point; edge_triangles finds the one
+// or two triangles on an edge from either end, and none for a non-edge.
+TEST(Triangulation, PlanarDelaunayFanApexAndEdgeTriangles) {
+  PlanarDelaunay d;
+  d.set_plane(2, 0);
+  const int n = 200;
+  d.insert({0.5, 10, 0}, 0);
+  for (int i = 0; i <= n; ++i) d.insert({double(i) / n, 0, 0}, 1 + i);
+  std::vector<std::array<int, 3>> around, on_edge;
+  d.incident_triangles(0, around);
+  EXPECT_EQ(around.size(), std::size_t(n));
+  EXPECT_FALSE(d.incident_triangles(0, around, 48));
+  EXPECT_TRUE(d.incident_triangles(1 + n / 2, around, 48));
+  EXPECT_EQ(around.size(), 2u);
+  const auto has = [](const std::array<int, 3>& t, int x) { return t[0] == x || t[1] == x || t[2] == x; };
+  for (const auto& [a, b] : std::vector<std::pair<int, int>>{{0, 1 + n / 2}, {1 + n / 2, 0}}) {
+    d.edge_triangles(a, b, on_edge);
+    ASSERT_EQ(on_edge.size(), 2u);
+    for (const auto& t : on_edge) EXPECT_TRUE(has(t, a) && has(t, b));
+    EXPECT_TRUE(has(on_edge[0], n / 2) || has(on_edge[1], n / 2));
+    EXPECT_TRUE(has(on_edge[0], 2 + n / 2) || has(on_edge[1], 2 + n / 2));
+  }
+  d.edge_triangles(0, 1, on_edge);  // a hull edge: one finite triangle
+  ASSERT_EQ(on_edge.size(), 1u);
+  EXPECT_TRUE(has(on_edge[0], 2));
+  d.edge_triangles(1, 3, on_edge);  // no edge
+  EXPECT_TRUE(on_edge.empty());
+  d.edge_triangles(0, 999, on_edge);  // no such point
+  EXPECT_TRUE(on_edge.empty());
+}
+
 // The planar triangulation is Delaunay within the (tilted) plane, not in the
 // projection it uses for orientation: compared with a brute-force empty-circle
 // search in orthonormal coordinates of the plane z = 2x.
