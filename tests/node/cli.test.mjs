@@ -68,6 +68,13 @@ test('the vertex limit exits 3 and says so in the statistics', { skip }, () => {
   assert.equal(JSON.parse(readFileSync(stats, 'utf8')).stopped, 'limit');
 });
 
+test('a vertex limit below what INITIALIZE inserts exits 3 before meshing', { skip }, () => {
+  const r = run('mesh', join(root, 'examples/models/thin_wedge.off'), '-o', join(work, 'refused.mesh'),
+                '--max-vertices', '20');
+  assert.equal(r.status, 3, r.stderr);
+  assert.match(r.stderr, /INITIALIZE alone inserts \d+ vertices/);
+});
+
 test('usage errors exit 1', { skip }, () => {
   assert.equal(run().status, 1);
   assert.equal(run('frobnicate').status, 1);

@@ -89,6 +89,14 @@ test('the vertex limit stops a wasm run', () => {
   assert.equal(r.stats.stopped, 'limit');
 });
 
+test('a vertex limit below what INITIALIZE inserts is refused before meshing', () => {
+  const r = wqmesh.mesh(readFileSync(join(root, 'examples/models/thin_wedge.off')), { maxVertices: 20 });
+  assert.equal(r.stats.stopped, 'limit');
+  assert.match(r.stats.stop_message, /INITIALIZE alone inserts \d+ vertices/);
+  assert.equal(r.stats.vertices, 0);
+  assert.equal(r.stats.tets, 0);
+});
+
 test('bad input and bad options throw errors with a kind', () => {
   assert.throws(() => wqmesh.mesh(new Uint8Array([1, 2, 3])), (e) => e.kind === 'truncated');
   assert.throws(() => wqmesh.mesh(new TextEncoder().encode('OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n')),
