@@ -29,55 +29,49 @@ want() {
 jobs="$(nproc 2>/dev/null || echo 2)"
 say() { printf 'build: %s\n' "$*"; }
 
-if want native; then
-  command -v cmake >/dev/null || { echo "build: error: cmake not found (run scripts/setup.sh)" >&2; exit 1; }
-  if [ ! -f build/native/CMakeCache.txt ]; then
-    say "configuring build/native (Release)"
-    cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release
+# Stops with a clear error when command $1 is missing.
+need() {
+  command -v "$1" >/dev/null || { echo "build: error: $1 not found (run scripts/setup.sh)" >&2; exit 1; }
+}
+# build_folder NAME WHAT CONFIGURE...: configures build/NAME with the command
+# CONFIGURE... the first time (WHAT says how, in the log), then builds it.
+build_folder() {
+  local name=$1 what=$2 start
+  shift 2
+  if [ ! -f "build/$name/CMakeCache.txt" ]; then
+    say "configuring build/$name ($what)"
+    "$@"
   fi
-  say "building build/native with $jobs jobs"
+  say "building build/$name with $jobs jobs"
   start=$(date +%s)
-  cmake --build build/native -j "$jobs"
-  say "native build done in $(( $(date +%s) - start )) s"
+  cmake --build "build/$name" -j "$jobs"
+  say "$name build done in $(( $(date +%s) - start )) s"
+}
+
+if want native; then
+  need cmake
+  build_folder native "Release" cmake -S . -B build/native -DCMAKE_BUILD_TYPE=Release
 fi
 
 if want wasm; then
-  command -v emcmake >/dev/null || { echo "build: error: emcmake not found (run scripts/setup.sh)" >&2; exit 1; }
+  need emcmake
   # Debian's emcc finds acorn (its JS optimizer) through Node's module path.
   export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
-  if [ ! -f build/wasm/CMakeCache.txt ]; then
-    say "configuring build/wasm (Release, emcmake)"
-    emcmake cmake -S . -B build/wasm -DCMAKE_BUILD_TYPE=Release
-  fi
-  say "building build/wasm with $jobs jobs"
-  start=$(date +%s)
-  cmake --build build/wasm -j "$jobs"
-  say "wasm build done in $(( $(date +%s) - start )) s: build/wasm/wasm/wqmesh.mjs ($(stat -c %s build/wasm/wasm/wqmesh.mjs) bytes)"
+  build_folder wasm "Release, emcmake" emcmake cmake -S . -B build/wasm -DCMAKE_BUILD_TYPE=Release
+  say "wasm module: build/wasm/wasm/wqmesh.mjs ($(stat -c %s build/wasm/wasm/wqmesh.mjs) bytes)"
 fi
 
 if want fuzz; then
-  command -v cmake >/dev/null || { echo "build: error: cmake not found (run scripts/setup.sh)" >&2; exit 1; }
-  clangxx=/usr/bin/clang++-14
-  [ -x "$clangxx" ] || { echo "build: error: $clangxx not found (run scripts/setup.sh)" >&2; exit 1; }
-  if [ ! -f build/fuzz/CMakeCache.txt ]; then
-    say "configuring build/fuzz (clang++-14, WQMESH_FUZZ: libFuzzer + ASan + UBSan, RelWithDebInfo)"
-    CXX="$clangxx" cmake -S . -B build/fuzz -DWQMESH_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  fi
-  say "building build/fuzz with $jobs jobs"
-  start=$(date +%s)
-  cmake --build build/fuzz -j "$jobs"
-  say "fuzz build done in $(( $(date +%s) - start )) s: build/fuzz/bin/fuzz_{read_off,read_stl,build_plc}"
+  need cmake
+  need clang++-14
+  build_folder fuzz "clang++-14, WQMESH_FUZZ: libFuzzer + ASan + UBSan, RelWithDebInfo" \
+    env CXX=clang++-14 cmake -S . -B build/fuzz -DWQMESH_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  say "fuzz targets: build/fuzz/bin/fuzz_{read_off,read_stl,build_plc}"
 fi
 
 if want asan; then
-  command -v cmake >/dev/null || { echo "build: error: cmake not found (run scripts/setup.sh)" >&2; exit 1; }
-  if [ ! -f build/asan/CMakeCache.txt ]; then
-    say "configuring build/asan (g++, WQMESH_SANITIZE: ASan + UBSan, -O1 -g)"
-    CXX=g++ cmake -S . -B build/asan -DWQMESH_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG"
-  fi
-  say "building build/asan with $jobs jobs"
-  start=$(date +%s)
-  cmake --build build/asan -j "$jobs"
-  say "asan build done in $(( $(date +%s) - start )) s"
+  need cmake
+  build_folder asan "g++, WQMESH_SANITIZE: ASan + UBSan, -O1 -g" \
+    env CXX=g++ cmake -S . -B build/asan -DWQMESH_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG"
 fi
