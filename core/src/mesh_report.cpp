@@ -4,6 +4,7 @@
 
 #include "wqmesh/json.h"
 #include "wqmesh/mesher.h"
+#include "wqmesh/output.h"
 
 namespace wqmesh {
 
@@ -46,12 +47,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("vertices", r.mesh.vertices.size());
   j.field("tets", r.mesh.tets.size());
   j.field("min_dihedral_deg", r.mesh.tets.empty() ? 0.0 : s.min_dihedral_deg);
-  j.key("radius_edge_bins").begin_object();
-  j.field("0.6-1.4", s.radius_edge_bins[0]).field("1.4-2.2", s.radius_edge_bins[1]).field(">2.2", s.radius_edge_bins[2]);
-  j.end_object();
-  j.key("dihedral_bins").begin_object();
-  j.field("0-3", s.dihedral_bins[0]).field("3-5", s.dihedral_bins[1]).field("5-10", s.dihedral_bins[2]);
-  j.end_object();
+  write_quality_bins(j, s);
   j.field("slivers", r.slivers);
   j.field("skinny", r.skinny);
   j.field("near_small_angle", r.near_small_angle);

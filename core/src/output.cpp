@@ -164,6 +164,15 @@ void write_tetgen(const std::string& base, const TetMesh& mesh) {
   }
 }
 
+void write_quality_bins(JsonWriter& j, const MeshStats& s) {
+  j.key("radius_edge_bins").begin_object();
+  j.field("0.6-1.4", s.radius_edge_bins[0]).field("1.4-2.2", s.radius_edge_bins[1]).field(">2.2", s.radius_edge_bins[2]);
+  j.end_object();
+  j.key("dihedral_bins").begin_object();
+  j.field("0-3", s.dihedral_bins[0]).field("3-5", s.dihedral_bins[1]).field("5-10", s.dihedral_bins[2]);
+  j.end_object();
+}
+
 std::string stats_json(const MeshStats& s, bool pretty) {
   JsonWriter j(pretty);
   j.begin_object();
@@ -177,16 +186,7 @@ std::string stats_json(const MeshStats& s, bool pretty) {
   j.field("max_radius_edge", s.max_radius_edge);
   j.field("max_aspect_ratio", s.max_aspect_ratio);
   j.field("radius_edge_below", s.radius_edge_below);
-  j.key("radius_edge_bins").begin_object();
-  j.field("0.6-1.4", s.radius_edge_bins[0]);
-  j.field("1.4-2.2", s.radius_edge_bins[1]);
-  j.field(">2.2", s.radius_edge_bins[2]);
-  j.end_object();
-  j.key("dihedral_bins").begin_object();
-  j.field("0-3", s.dihedral_bins[0]);
-  j.field("3-5", s.dihedral_bins[1]);
-  j.field("5-10", s.dihedral_bins[2]);
-  j.end_object();
+  write_quality_bins(j, s);
   j.field("slivers", s.slivers);
   j.key("min_dihedral_histogram").begin_array();
   for (std::size_t c : s.min_dihedral_histogram) j.value(c);

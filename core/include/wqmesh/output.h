@@ -11,6 +11,8 @@
 
 namespace wqmesh {
 
+class JsonWriter;
+
 /// Per-tet flags written as cell data (VTK) and in the stats; values are the
 /// classes of the mesher (0 good, 1 skinny-near, 2 sliver-near, 3 violation),
 /// or empty.
@@ -53,5 +55,10 @@ void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, con
 /// "min_dihedral_histogram": [90 counts], "min_face_angle_histogram": [90]}.
 /// Non-finite values (an infinite R/l of a flat tet) are written as null.
 std::string stats_json(const MeshStats& stats, bool pretty = true);
+
+/// Writes the two bin objects of the statistics into the open JSON object of
+/// `j`: "radius_edge_bins" and "dihedral_bins", keyed as in stats_json. Shared
+/// by stats_json and mesh_stats_json so that the two layouts cannot drift.
+void write_quality_bins(JsonWriter& j, const MeshStats& stats);
 
 }  // namespace wqmesh
