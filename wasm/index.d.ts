@@ -216,7 +216,11 @@ export interface MeshOptions {
    * hold more.
    */
   maxVertices?: number;
-  /** Tets with a larger circumradius are split, finite, at least 0 (default 0: no bound). */
+  /**
+   * Tets with a larger circumradius are split, finite, at least 0 (default 0:
+   * no bound); next to sharp vertices the bound is the vertex ball's radius
+   * f(u)/4 when that is larger.
+   */
   maxSize?: number;
   /** Margin of the bounding box B, a fraction of the largest extent, in [0.001, 1000] (default 0.5). */
   boxMargin?: number;

@@ -232,6 +232,9 @@ class Mesher {
   void enqueue_around(int v);
   bool process_queues(bool refine_phase);  ///< rules 1-2 / 4-6; false if stopped
   bool rule3();
+  /// With max_size: splits sharp subsegments longer than 2/3 max_size before
+  /// the protecting balls are fixed; false if stopped.
+  bool split_long_sharp_subsegments();
   bool rule7_pass();
   bool check_tet(const Tet& t, CellRef ref);
   void make_protecting_balls();  ///< end of CONFORM (section 4.3)

@@ -236,10 +236,40 @@ void Mesher::conform() {
   for (const Subfacet& h : subfacets()) facet_queue_.push_back(h);
   std::sort(seg_queue_.begin(), seg_queue_.end());
   if (!process_queues(false)) return;
+  if (opt_.max_size > 0 && !split_long_sharp_subsegments()) return;
   int passes = 0;
   while (stop_reason_.empty() && rule3() && ++passes < 1000) {
   }
   make_protecting_balls();
+}
+
+bool Mesher::split_long_sharp_subsegments() {
+  // Beyond the paper: the size bound max_size of rule 6. Rule 6 never inserts
+  // inside a protecting ball, and the ball of a sharp subsegment ab has radius
+  // |ab| (make_protecting_balls), so near a long sharp edge the bound would go
+  // unmet. A tet whose circumcenter z lies in that ball has a or b on or
+  // outside its circumsphere, so its circumradius is at most |z - a| <= 1.5 |ab|:
+  // splitting every sharp subsegment longer than 2/3 max_size, at its midpoint
+  // as rule 1 does, keeps those tets within the bound. Conformity is restored
+  // after each split. (Inside a vertex ball the circumradius stays at most the
+  // ball's radius f(u)/4, which INITIALIZE fixes.)
+  const double bound = 2.0 / 3.0 * opt_.max_size;
+  for (bool again = true; again;) {
+    again = false;
+    std::vector<std::uint64_t> keys;
+    for (const auto& [k, s] : segs_)
+      if (s.sharp && dist2(tri_.point(s.a), tri_.point(s.b)) > bound * bound) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    for (std::uint64_t k : keys) {
+      const auto it = segs_.find(k);
+      if (it == segs_.end()) continue;
+      // Counted with rule 6, whose size bound this serves.
+      if (insert(splite(it->second), 6) < 0) continue;
+      again = true;
+      if (!tick() || !process_queues(false)) return false;
+    }
+  }
+  return stop_reason_.empty();
 }
 
 std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph& g) const {

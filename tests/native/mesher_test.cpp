@@ -436,6 +436,54 @@ TEST(Mesher, MaxSizeBoundsTheCircumradius) {
   for (const TetQuality& q : r.quality) EXPECT_LE(q.radius, o.max_size * (1 + 1e-9));
 }
 
+TEST(Mesher, MaxSizeHoldsNextToSharpEdges) {
+  // Rule 6 refuses circumcenters inside protecting balls, so the sharp
+  // subsegments are split down to 2/3 max_size first: then every tet has a
+  // circumradius within max_size, except one whose circumcenter lies in a
+  // vertex ball, within that ball's radius f(u)/4. PUMP is off: the bound is
+  // on the Delaunay triangulation REFINE leaves. Flat tets with their four
+  // vertices on a vertex ball's sphere have that sphere as circumsphere, but
+  // computed in floating point their circumcenter lands anywhere: they are
+  // counted apart.
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"thin_wedge.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  const Input in = load(files[0]);
+  MeshOptions o;
+  o.pump = false;
+  o.max_size = 0.2;
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis, o);
+  expect_invariants("thin_wedge, max_size", in, r);
+  const auto on_sphere = [](const Point3& p, const ProtectingBall& b) {
+    return std::abs(std::sqrt(mesher::dist2(p, b.center)) - b.radius) <= 1e-9 * b.radius;
+  };
+  std::size_t in_segment_ball = 0, on_ball_sphere = 0;
+  for (const auto& t : r.mesh.tets) {
+    bool flat_on_sphere = false;
+    for (const ProtectingBall& b : r.protecting_balls)
+      if (b.vertex_ball && std::all_of(t.begin(), t.end(), [&](int v) { return on_sphere(r.mesh.vertices[v], b); }))
+        flat_on_sphere = true;
+    if (flat_on_sphere) {
+      ++on_ball_sphere;
+      continue;
+    }
+    double r2;
+    const Point3 z = mesher::circumcenter(r.mesh.vertices[t[0]], r.mesh.vertices[t[1]], r.mesh.vertices[t[2]],
+                                          r.mesh.vertices[t[3]], r2);
+    double bound = o.max_size;
+    bool in_ball = false;
+    for (const ProtectingBall& b : r.protecting_balls)
+      if (mesher::dist2(z, b.center) <= b.radius * b.radius) {
+        if (b.vertex_ball) bound = std::max(bound, b.radius);
+        in_ball = true;
+      }
+    if (in_ball && bound == o.max_size) ++in_segment_ball;
+    EXPECT_LE(std::sqrt(r2), bound * (1 + 1e-9)) << "circumcenter " << z[0] << " " << z[1] << " " << z[2];
+  }
+  // The case the split is for occurs: tets centred in subsegment balls.
+  EXPECT_GT(in_segment_ball, 0u);
+  EXPECT_LT(on_ball_sphere, r.mesh.tets.size() / 20);
+}
+
 // ---- rules on tiny inputs ------------------------------------------------------
 
 // A thin wedge: a triangular prism whose edge along z has a dihedral angle of

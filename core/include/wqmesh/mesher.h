@@ -29,9 +29,12 @@ struct MeshOptions {
   double box_margin = 0.5;
   /// The run stops with stopped = "limit" when the vertex count reaches it.
   std::size_t max_vertices = 1'000'000;
-  /// Optional size bound beyond the paper: tets whose circumcenter lies in the
-  /// input's bounding box and whose circumradius exceeds it are split as in
-  /// rule 6 (0: none).
+  /// Optional size bound beyond the paper (0: none): tets whose circumcenter
+  /// lies in the input's bounding box and whose circumradius exceeds it are
+  /// split as in rule 6, and sharp subsegments longer than 2/3 of it are split
+  /// at the end of CONFORM, before the protecting balls are fixed, so that
+  /// the bound holds next to sharp edges too. Tets whose circumcenter lies in
+  /// a vertex ball keep a circumradius up to its radius f(u)/4.
   double max_size = 0;
   /// PUMP visits the sliver vertices in passes; it stops after a pass that
   /// improves nothing or after this many passes.
