@@ -154,6 +154,11 @@ bool Mesher::check_tet(const Tet& t, CellRef ref) {
   // paper, circumradius above max_size) is split at its circumcenter z unless
   // z lies on or inside a protecting ball; ENCROACH(z) decides the point.
   if (!tri_.is_cell(t, ref)) return false;
+  // Four vertices on the sphere of one vertex ball: that sphere is the
+  // circumsphere (computed in floating point, the circumcenter of such a flat
+  // tet lands anywhere), its center u lies in the ball, and rule 6 refuses it.
+  const int u = verts_[t[0]].ball;
+  if (u >= 0 && verts_[t[1]].ball == u && verts_[t[2]].ball == u && verts_[t[3]].ball == u) return false;
   const Point3 &a = tri_.point(t[0]), &b = tri_.point(t[1]), &c = tri_.point(t[2]), &d = tri_.point(t[3]);
   double r2;
   const Point3 z = circumcenter(a, b, c, d, r2);

@@ -346,7 +346,7 @@ TEST(Mesher, PumpLeavesStrictlyFewerSliversThanQmesh) {
       models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl", "slit-1.off", "example012.stl", "wedge.off"});
   for (const auto& f : models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off", "slit.off", "spike.off"})) files.push_back(f);
   if (files.empty()) GTEST_SKIP() << "no models";
-  std::size_t improved = 0;
+  std::size_t improved = 0, pumped = 0;
   for (const std::string& f : files) {
     const Input in = load(f);
     MeshOptions qmesh;
@@ -363,12 +363,17 @@ TEST(Mesher, PumpLeavesStrictlyFewerSliversThanQmesh) {
     EXPECT_LE(sliver_violations(after, qmesh.rho0), away) << f;
     if (away > 0) {
       EXPECT_LT(after.slivers, before.slivers) << f;
-      EXPECT_GT(after.pumped_vertices, 0u) << f;
       ++improved;
+      // Rule 7's insertions alone may remove them (spike.off).
+      pumped += after.pumped_vertices > 0;
     }
   }
-  // The 20mm cube and slit-1 have QMESH slivers away from small angles.
-  if (!models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"}).empty()) EXPECT_GE(improved, 2u);
+  // The 20mm cube and slit-1 have QMESH slivers away from small angles, and
+  // on the cube PUMP weights vertices.
+  if (!models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"}).empty()) {
+    EXPECT_GE(improved, 2u);
+    EXPECT_GE(pumped, 1u);
+  }
 }
 
 TEST(Mesher, SameInputSameMesh) {
@@ -730,6 +735,43 @@ TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
 
 namespace wqmesh {
 namespace {
+
+TEST(MesherRules, Rule6LeavesTetsOnAVertexBallSphereAlone) {
+  // Four vertices on the sphere of one vertex ball: their circumsphere is that
+  // sphere, its center u lies in the ball and rule 6 refuses it. Computed in
+  // floating point, the circumcenter of such a nearly flat tet lands far from
+  // u; it must not be inserted (thin_wedge at max_size 0.2 once inserted it,
+  // and the tet stayed, its real circumsphere being empty).
+  const auto files = models(WQMESH_EXAMPLE_MODELS, {"thin_wedge.off"});
+  if (files.empty()) GTEST_SKIP() << "no example models";
+  const Input in = load(files[0]);
+  const mesher::Domain dom(in.plc, in.analysis);
+  MeshOptions o;
+  o.pump = false;
+  o.max_size = 0.2;
+  ProgressCallback none;
+  mesher::Mesher m(dom, o, none);
+  std::set<std::array<double, 3>> rule6;
+  m.observer = [&](const mesher::Insertion& ins, int rule, int id) {
+    if (id >= 0 && rule == 6 && ins.on == mesher::On::free) rule6.insert(ins.p);
+  };
+  m.initialize();
+  m.conform();
+  m.refine();
+  ASSERT_FALSE(rule6.empty());
+  std::size_t on_sphere = 0;
+  for (const Tet& t : m.triangulation().finite_cells()) {
+    const int u = m.vertices()[t[0]].ball;
+    if (u < 0 || m.vertices()[t[1]].ball != u || m.vertices()[t[2]].ball != u || m.vertices()[t[3]].ball != u)
+      continue;
+    ++on_sphere;
+    const auto& tri = m.triangulation();
+    double r2;
+    const Point3 z = mesher::circumcenter(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]), r2);
+    EXPECT_EQ(rule6.count(z), 0u) << "rule 6 inserted the circumcenter of a tet on the sphere of vertex " << u;
+  }
+  EXPECT_GT(on_sphere, 0u);
+}
 
 TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
   // Watches every insertion of CONFORM and REFINE on a model that exercises
