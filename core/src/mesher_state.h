@@ -101,6 +101,16 @@ struct Domain {
   /// next: it turns counter-clockwise about the facet normal from the edge
   /// u-next (t = 0) to the edge u-prev (t = span), inside the vertex ball.
   Sector sector(int u, int f, int prev, int next) const;
+  /// Calls fn(f, prev, next) for every corner at u of a loop of a facet at
+  /// u (one per sector), in the order INITIALIZE makes the shield
+  /// subsegments; initialize_points counts along the same walk.
+  template <class F>
+  void for_each_corner(int u, F&& fn) const {
+    for (int f : vertex_facets[u])
+      for (const auto& loop : p.facets[f].loops)
+        for (std::size_t i = 0, m = loop.size(); i < m; ++i)
+          if (loop[i] == u) fn(f, loop[(i + m - 1) % m], loop[(i + 1) % m]);
+  }
   /// The number of vertices INITIALIZE inserts (section 4.1): the vertices of
   /// P and B, one ball point per edge end at a sharp vertex, and one SOS split
   /// per sector of angle pi or more. Known before meshing, so a vertex limit

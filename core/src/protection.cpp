@@ -197,10 +197,7 @@ std::size_t Domain::initialize_points() const {
   for (int u = 0; u < static_cast<int>(p.vertices.size()); ++u) {
     if (ball_radius[u] <= 0) continue;
     n += vertex_edges[u].size();
-    for (int f : vertex_facets[u])
-      for (const auto& loop : p.facets[f].loops)
-        for (std::size_t i = 0, m = loop.size(); i < m; ++i)
-          if (loop[i] == u && sector(u, f, loop[(i + m - 1) % m], loop[(i + 1) % m]).span >= kPi) ++n;
+    for_each_corner(u, [&](int f, int prev, int next) { n += sector(u, f, prev, next).span >= kPi; });
   }
   return n;
 }
@@ -268,32 +265,23 @@ void Mesher::initialize() {
   // split at the midpoint of its arc (SOS, section 4.1).
   vertex_sectors_.assign(P.vertices.size(), {});
   for (int u = 0; u < static_cast<int>(P.vertices.size()); ++u) {
-    const double r = dom_.ball_radius[u];
-    if (r <= 0) continue;
-    for (int f : dom_.vertex_facets[u]) {
-      for (const auto& loop : P.facets[f].loops) {
-        const std::size_t m = loop.size();
-        for (std::size_t i = 0; i < m; ++i) {
-          if (loop[i] != u) continue;
-          const int prev = loop[(i + m - 1) % m], next = loop[(i + 1) % m];
-          // The facet lies to the left of its loops seen from outside, so its
-          // sector at u turns counter-clockwise (about n) from next to prev.
-          const Sector s = dom_.sector(u, f, prev, next);
-          const int sid = static_cast<int>(sectors_.size());
-          sectors_.push_back(s);
-          vertex_sectors_[u].push_back(sid);
-          const int e_next = edge_between(u, next), e_prev = edge_between(u, prev);
-          Subsegment shield;
-          shield.a = ball_point.at({u, e_next});
-          shield.b = ball_point.at({u, e_prev});
-          shield.sector = sid;
-          shield.ta = 0;
-          shield.tb = s.span;
-          add_segment(shield);
-          if (s.span >= kPi) insert(splite(shield), 0);
-        }
-      }
-    }
+    if (dom_.ball_radius[u] <= 0) continue;
+    dom_.for_each_corner(u, [&](int f, int prev, int next) {
+      // The facet lies to the left of its loops seen from outside, so its
+      // sector at u turns counter-clockwise (about n) from next to prev.
+      const Sector s = dom_.sector(u, f, prev, next);
+      const int sid = static_cast<int>(sectors_.size());
+      sectors_.push_back(s);
+      vertex_sectors_[u].push_back(sid);
+      Subsegment shield;
+      shield.a = ball_point.at({u, edge_between(u, next)});
+      shield.b = ball_point.at({u, edge_between(u, prev)});
+      shield.sector = sid;
+      shield.ta = 0;
+      shield.tb = s.span;
+      add_segment(shield);
+      if (s.span >= kPi) insert(splite(shield), 0);
+    });
   }
 }
 

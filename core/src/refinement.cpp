@@ -6,6 +6,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 #include "mesher_state.h"
@@ -78,12 +79,9 @@ void Mesher::enqueue_around(int v) {
   for (int x : ring) {
     facets_of(x, fs);
     for (int f : fs) {
-      bool whole_star = true;
-      if (x == v)
-        facet_dt_[f].incident_triangles(x, around);
-      else
-        whole_star = facet_dt_[f].incident_triangles(x, around, kFan);
-      if (whole_star) {
+      // v's own star is always walked whole.
+      const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
+      if (facet_dt_[f].incident_triangles(x, around, cap)) {
         for (const Tri& t : around)
           if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
         continue;

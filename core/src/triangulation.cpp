@@ -4,6 +4,7 @@
 #include "triangulation.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -388,15 +389,7 @@ std::vector<std::array<int, 3>> PlanarDelaunay::triangles() const {
 }
 
 void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out) const {
-  out.clear();
-  const auto it = impl_->by_id.find(id);
-  if (it == impl_->by_id.end() || impl_->dt.dimension() < 2) return;
-  auto f = impl_->dt.incident_faces(it->second), done = f;
-  if (f == nullptr) return;
-  do {
-    if (!impl_->dt.is_infinite(f))
-      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
-  } while (++f != done);
+  incident_triangles(id, out, std::numeric_limits<std::size_t>::max());
 }
 
 bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const {
