@@ -211,9 +211,9 @@ export interface MeshOptions {
   pump?: boolean;
   /**
    * The run stops with `stopped: "limit"` at this many vertices, in [8, 1e9]
-   * (default 1000000). INITIALIZE inserts the input vertices and the points of
-   * the protecting balls before the limit is looked at, so a stopped run may
-   * hold more.
+   * (default 1000000). A limit below the vertices INITIALIZE alone inserts
+   * (the input vertices, the box corners and the vertex-ball points, known in
+   * advance) is refused before meshing, with `stopped: "limit"`.
    */
   maxVertices?: number;
   /**
