@@ -1,12 +1,19 @@
 // wqmesh: the Embind bindings of the wasm module. JavaScript sees
-//   check(bytes: Uint8Array, pretty: boolean) -> string (the JSON report)
-//   mesh(bytes: Uint8Array, options: object, progress: function|undefined)
+//   check(bytes: Uint8Array, options: object|undefined, pretty: boolean)
+//     -> string (the JSON report; options: those of the table marked for check)
+//   mesh(bytes: Uint8Array, options: object|undefined, progress: function|undefined)
 //     -> { stats: string (JSON), vertices: Float64Array, weights: Float64Array,
 //          tets: Uint32Array, boundary: Uint32Array, boundaryFacet: Int32Array,
-//          tetClass: Uint8Array, minDihedral: Float64Array }
+//          tetClass: Uint8Array, minDihedral: Float64Array, radiusEdge: Float64Array,
+//          protectingBalls: Float64Array, protectingBallIsVertex: Uint8Array }
 //        or { error: { kind, message } }
+//   writeMesh(result: object, format: "medit"|"vtu"|"tetgen", bytes: boolean)
+//     -> string | Uint8Array (tetgen: { node, ele, face, edge }) or { error }
+//   optionTable() -> string (JSON, wqmesh::options_json)
+//   memoryStats() -> { heapBytes, liveBytes }
 //   version() -> string
-// wasm/index.mjs wraps them (loadWqmesh) and parses the report.
+// wasm/index.mjs wraps them. Options are read and checked with the core's
+// table (wqmesh/options.h), the same as the native command line's.
 //
 // Memory: the module grows its memory up to 4 GB (-sMAXIMUM_MEMORY); past
 // that, malloc returns null (-sABORTING_MALLOC=0) instead of aborting. The
@@ -24,6 +31,34 @@
 // the output arrays) an allocation beyond the cap or the memory throws
 // std::bad_alloc at once.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <emscripten/bind.h>
+#include <emscripten/heap.h>
+#include <emscripten/val.h>
+
+#include <malloc.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "wqmesh/input.h"
+#include "wqmesh/json.h"
+#include "wqmesh/mesher.h"
+#include "wqmesh/options.h"
+#include "wqmesh/output.h"
+#include "wqmesh/report.h"
+
+#ifndef WQMESH_VERSION
+#define WQMESH_VERSION "0.0.0"
+#endif
+
+// ---- Counted allocations -------------------------------------------------------
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -133,9 +168,9 @@ void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcep
 
 namespace {
 
-/// The default of options.maxMemoryBytes: 3 GiB, below the 4 GB ceiling so
-/// that the last allocations of a run (the output arrays) still fit.
-constexpr double kDefaultMaxMemory = 3.0 * 1024 * 1024 * 1024;
+/// The default of options.maxMemoryBytes (wqmesh::RunOptions, the option
+/// table) is 3 GiB, below the 4 GB ceiling so that the last allocations of a
+/// run (the output arrays) still fit.
 constexpr double kMaxMemory = 4.0 * 1024 * 1024 * 1024;  // -sMAXIMUM_MEMORY
 
 /// The ballast given back when malloc fails while the mesher runs: far more
@@ -176,8 +211,48 @@ class DeferShortage {
 // Thrown by the progress callback to end a run that is short of memory.
 struct StopForMemory {};
 
+using emscripten::val;
+
+// Reads the JS options object into `out` with the core's option table: every
+// key must name an option (of check, when `for_check`), booleans must be
+// booleans, numbers numbers, and every value within the table's range. An
+// undefined value keeps the default. Returns "" or the error message.
+std::string read_options(const val& options, bool for_check, wqmesh::RunOptions& out) {
+  if (options.isUndefined() || options.isNull()) return "";
+  if (options.typeOf().as<std::string>() != "object" || val::global("Array").call<bool>("isArray", options))
+    return "the options must be an object, e.g. { rho: 2.2 }";
+  const val keys = val::global("Object").call<val>("keys", options);
+  const unsigned n = keys["length"].as<unsigned>();
+  for (unsigned i = 0; i < n; ++i) {
+    const std::string name = keys[i].as<std::string>();
+    const val v = options[name];
+    if (v.isUndefined()) continue;
+    const wqmesh::OptionSpec* spec = wqmesh::find_option(name);
+    if (spec == nullptr || (for_check && !spec->check)) {
+      std::string message = "unknown option '" + name + "' for " + (for_check ? "check" : "mesh") +
+                            "; the known options are: " + wqmesh::option_names(for_check);
+      if (name == "signal" || name == "onProgress")
+        message += " (signal and onProgress go in the third argument, { onProgress, signal })";
+      return message;
+    }
+    double value = 0;
+    if (spec->type == wqmesh::OptionType::boolean) {
+      if (!v.isTrue() && !v.isFalse()) return std::string(spec->name) + " must be true or false";
+      value = v.isTrue() ? 1 : 0;
+    } else {
+      if (!v.isNumber())
+        return std::string(spec->name) + " must be a number, got a " + v.typeOf().as<std::string>();
+      value = v.as<double>();
+    }
+    const std::string error = wqmesh::check_option_value(*spec, value, spec->name);
+    if (!error.empty()) return error;
+    wqmesh::apply_option(out, *spec, value);
+  }
+  return "";
+}
+
 // The length of a Uint8Array, as a double (a size_t would wrap beyond 4 GB).
-double byte_length(const emscripten::val& bytes) { return bytes["length"].as<double>(); }
+double byte_length(const val& bytes) { return bytes["length"].as<double>(); }
 
 std::string too_large_message(double length) {
   const wqmesh::InputLimits limits;
@@ -200,30 +275,35 @@ std::string failure_json(const char* kind, const std::string& message, bool pret
   return json.str();
 }
 
-// Copies the bytes of a Uint8Array into the wasm
-// heap, then reads, validates and analyses them. Never throws to JS.
-std::string check(const emscripten::val& bytes, bool pretty) {
-  if (!bytes.instanceof(emscripten::val::global("Uint8Array"))) {
+// The bytes of a Uint8Array in a string of the heap: one bulk copy through a
+// view on the string's buffer (nothing allocates between making the view and
+// using it).
+void copy_bytes(const val& bytes, std::string& data) {
+  data.resize(static_cast<std::size_t>(byte_length(bytes)));
+  if (!data.empty())
+    val(emscripten::typed_memory_view(data.size(), reinterpret_cast<unsigned char*>(&data[0])))
+        .call<void>("set", bytes);
+}
+
+// Copies the bytes of a Uint8Array into the wasm heap, then reads, validates
+// and analyses them. Never throws to JS.
+std::string check(const val& bytes, const val& options, bool pretty) {
+  if (!bytes.instanceof(val::global("Uint8Array")))
     return failure_json("io", "check() expects the file's bytes as a Uint8Array", pretty);
-  }
+  wqmesh::RunOptions o;
+  const std::string option_error = read_options(options, true, o);
+  if (!option_error.empty()) return failure_json("options", option_error, pretty);
   const double length = byte_length(bytes);
   if (length > static_cast<double>(wqmesh::InputLimits().max_bytes))
     return failure_json("too_large", too_large_message(length), pretty);
   std::string data;
   try {
-    // One bulk copy: a Uint8Array view on the string's buffer, filled by set().
-    // Nothing allocates wasm memory between making the view and using it.
-    data.resize(static_cast<std::size_t>(length));
-    if (!data.empty()) {
-      emscripten::val view(emscripten::typed_memory_view(
-          data.size(), reinterpret_cast<unsigned char*>(&data[0])));
-      view.call<void>("set", bytes);
-    }
+    copy_bytes(bytes, data);
   } catch (const std::bad_alloc&) {
     return failure_json("too_large", "the input does not fit in memory", pretty);
   }
   try {
-    const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size());
+    const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, o.analysis);
     return wqmesh::check_json(result, pretty);
   } catch (const std::bad_alloc&) {
     return failure_json("too_large", "the input does not fit in memory", pretty);
@@ -237,13 +317,13 @@ std::string check(const emscripten::val& bytes, bool pretty) {
 // A copy of an array as a JS typed array (a live view of the heap would die
 // when memory grows).
 template <class T>
-emscripten::val copy_out(const T* data, std::size_t n) {
-  return emscripten::val(emscripten::typed_memory_view(n, data)).call<emscripten::val>("slice");
+val copy_out(const T* data, std::size_t n) {
+  return val(emscripten::typed_memory_view(n, data)).call<val>("slice");
 }
 
-emscripten::val error_value(const std::string& kind, const std::string& message) {
-  emscripten::val out = emscripten::val::object();
-  emscripten::val error = emscripten::val::object();
+val error_value(const std::string& kind, const std::string& message) {
+  val out = val::object();
+  val error = val::object();
   error.set("kind", kind);
   error.set("message", message);
   out.set("error", error);
@@ -252,7 +332,7 @@ emscripten::val error_value(const std::string& kind, const std::string& message)
 
 // The "limit" error of a run short of memory. The cap is lifted by then
 // (MemoryCap's destructor ran) and the run's memory is freed.
-emscripten::val memory_error(double max_memory, const char* phase, std::size_t vertices) {
+val memory_error(double max_memory, const char* phase, std::size_t vertices) {
   const std::string where = std::string(" (in ") + phase + ", at " + std::to_string(vertices) + " vertices)";
   if (cap_reached)
     return error_value("limit", "the run needs more than maxMemoryBytes = " +
@@ -263,43 +343,22 @@ emscripten::val memory_error(double max_memory, const char* phase, std::size_t v
                               "gives less)" + where + ": lower maxVertices or maxMemoryBytes");
 }
 
-// Meshes the polyhedron in `bytes` with WQMESH. `options` may hold rho,
-// sliverAngle, pump, maxVertices, maxSize, boxMargin, maxMemoryBytes;
-// `progress`, when a function, is called as progress(phase, fraction,
-// vertices) after a bounded amount of work and cancels the run when it returns
-// false. Never throws: failures come back as { error: { kind, message } }.
-emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& options, const emscripten::val& progress) {
-  if (!bytes.instanceof(emscripten::val::global("Uint8Array")))
+// Meshes the polyhedron in `bytes` with WQMESH. `options` holds options of the
+// table (wqmesh/options.h); `progress`, when a function, is called as
+// progress(phase, fraction, vertices, steps) after a bounded amount of work
+// and cancels the run when it returns false. Never throws: failures come back
+// as { error: { kind, message } }.
+val mesh(const val& bytes, const val& options, const val& progress) {
+  if (!bytes.instanceof(val::global("Uint8Array")))
     return error_value("io", "mesh() expects the file's bytes as a Uint8Array");
+  wqmesh::RunOptions run;
+  const std::string option_error = read_options(options, false, run);
+  if (!option_error.empty()) return error_value("options", option_error);
   const double length = byte_length(bytes);
   if (length > static_cast<double>(wqmesh::InputLimits().max_bytes))
     return error_value("too_large", too_large_message(length));
-  wqmesh::MeshOptions o;
-  wqmesh::AnalysisOptions ao;
-  double max_vertices = static_cast<double>(o.max_vertices);
-  double max_memory = kDefaultMaxMemory;
-  const bool has_options = !options.isUndefined() && !options.isNull();
-  auto number = [&](const char* key, double& target) {
-    if (!has_options) return;
-    const emscripten::val v = options[key];
-    if (v.isNumber()) target = v.as<double>();
-  };
-  number("rho", o.rho0);
-  number("sliverAngle", o.theta_deg);
-  number("maxSize", o.max_size);
-  number("boxMargin", o.box_margin);
-  number("maxVertices", max_vertices);
-  number("maxMemoryBytes", max_memory);
-  // The ranges of the command line; NaN and infinities fail every test.
-  if (!(o.rho0 >= 1 && o.rho0 <= 1e6) || !(o.theta_deg >= 0 && o.theta_deg <= 90) ||
-      !(o.max_size >= 0 && o.max_size <= 1e300) || !(o.box_margin >= 1e-3 && o.box_margin <= 1e3) ||
-      !(max_vertices >= 8 && max_vertices <= 1e9) || !(max_memory >= 65536 && max_memory <= kMaxMemory))
-    return error_value("options", "options out of range: 1 <= rho <= 1e6, 0 <= sliverAngle <= 90, "
-                                  "0 <= maxSize (finite), 0.001 <= boxMargin <= 1000, 8 <= maxVertices <= 1e9, "
-                                  "65536 <= maxMemoryBytes <= 4294967296");
-  o.max_vertices = static_cast<std::size_t>(max_vertices);
-  ao.box_margin = o.box_margin;
-  if (has_options && options["pump"].isFalse()) o.pump = false;
+  const wqmesh::MeshOptions& o = run.mesh;
+  const double max_memory = run.max_memory_bytes;
   const bool js_progress = progress.typeOf().as<std::string>() == "function";
 
   // Where the run was when memory ran out, for the message.
@@ -307,11 +366,9 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
   std::size_t vertices = 0;
   try {
     const MemoryCap cap(max_memory);
-    std::string data(static_cast<std::size_t>(length), '\0');
-    if (!data.empty())
-      emscripten::val(emscripten::typed_memory_view(data.size(), reinterpret_cast<unsigned char*>(&data[0])))
-          .call<void>("set", bytes);
-    const wqmesh::CheckResult input = wqmesh::check_polyhedron(data.data(), data.size(), {}, ao);
+    std::string data;
+    copy_bytes(bytes, data);
+    const wqmesh::CheckResult input = wqmesh::check_polyhedron(data.data(), data.size(), {}, run.analysis);
     if (!input.valid) {
       // check_polyhedron calls a std::bad_alloc too_large: the cap's, here.
       if (cap_reached && input.error_kind == "too_large") throw std::bad_alloc();
@@ -327,10 +384,10 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
       vertices = p.vertices;
       if (memory_short) throw StopForMemory();
       if (!js_progress) return true;
-      const emscripten::val r = progress(p.phase, p.fraction, static_cast<double>(p.vertices));
+      const val r = progress(p.phase, p.fraction, static_cast<double>(p.vertices), static_cast<double>(p.steps));
       return !r.isFalse();
     };
-    const double t0 = emscripten::val::global("Date").call<double>("now");
+    const double t0 = val::global("Date").call<double>("now");
     wqmesh::MeshResult r;
     {
       const DeferShortage defer;
@@ -341,10 +398,10 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
       vertices = r.all_vertices;
       throw StopForMemory();
     }
-    const double seconds = (emscripten::val::global("Date").call<double>("now") - t0) / 1000;
+    const double seconds = (val::global("Date").call<double>("now") - t0) / 1000;
     phase = "output";
     vertices = r.all_vertices;
-    emscripten::val out = emscripten::val::object();
+    val out = val::object();
     // peak_memory_mb: the peak of the live C++ allocations of this call.
     out.set("stats", wqmesh::mesh_stats_json(input.plc, r, o, seconds, peak_bytes / 1048576.0, false));
     std::vector<double> xyz;
@@ -352,10 +409,17 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
     std::vector<std::uint32_t> tets, tris;
     for (const auto& t : r.mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
     for (const auto& t : r.mesh.boundary) tris.insert(tris.end(), t.begin(), t.end());
-    std::vector<std::uint8_t> classes;
-    std::vector<double> angles;
+    std::vector<std::uint8_t> classes, ball_is_vertex;
+    std::vector<double> angles, radius_edge, balls;
     for (wqmesh::TetClass c : r.tet_class) classes.push_back(static_cast<std::uint8_t>(c));
-    for (const wqmesh::TetQuality& q : r.quality) angles.push_back(q.min_dihedral_deg);
+    for (const wqmesh::TetQuality& q : r.quality) {
+      angles.push_back(q.min_dihedral_deg);
+      radius_edge.push_back(q.radius_edge);
+    }
+    for (const wqmesh::ProtectingBall& b : r.protecting_balls) {
+      balls.insert(balls.end(), {b.center[0], b.center[1], b.center[2], b.radius});
+      ball_is_vertex.push_back(b.vertex_ball ? 1 : 0);
+    }
     std::vector<double> weights = r.mesh.weights;
     weights.resize(r.mesh.vertices.size(), 0.0);
     out.set("vertices", copy_out(xyz.data(), xyz.size()));
@@ -365,6 +429,9 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
     out.set("boundaryFacet", copy_out(r.mesh.boundary_facet.data(), r.mesh.boundary_facet.size()));
     out.set("tetClass", copy_out(classes.data(), classes.size()));
     out.set("minDihedral", copy_out(angles.data(), angles.size()));
+    out.set("radiusEdge", copy_out(radius_edge.data(), radius_edge.size()));
+    out.set("protectingBalls", copy_out(balls.data(), balls.size()));
+    out.set("protectingBallIsVertex", copy_out(ball_is_vertex.data(), ball_is_vertex.size()));
     return out;
   } catch (const StopForMemory&) {
     return memory_error(max_memory, phase, vertices);
@@ -377,6 +444,117 @@ emscripten::val mesh(const emscripten::val& bytes, const emscripten::val& option
   }
 }
 
+// Thrown while reading a result object for the writers: not a mesh result.
+struct BadResult {
+  std::string message;
+};
+
+// result[name] as a vector, which must be a typed array of type `js_type`
+// whose length is a multiple of `width`.
+template <class T>
+std::vector<T> typed_array(const val& result, const char* name, const char* js_type, std::size_t width) {
+  const val a = result[name];
+  if (!a.instanceof(val::global(js_type)))
+    throw BadResult{std::string("result.") + name + " must be a " + js_type};
+  std::vector<T> v(a["length"].as<std::size_t>());
+  if (v.size() % width != 0)
+    throw BadResult{std::string("result.") + name + " has " + std::to_string(v.size()) +
+                    " entries, not a multiple of " + std::to_string(width)};
+  if (!v.empty()) val(emscripten::typed_memory_view(v.size(), v.data())).call<void>("set", a);
+  return v;
+}
+
+// The mesh of a result object of mesh() (vertices, weights, tets, boundary,
+// boundaryFacet), its indices checked, and its classes (tetClass).
+wqmesh::TetMesh mesh_of(const val& result, std::vector<int>& classes) {
+  if (result.typeOf().as<std::string>() != "object" || result.isNull())
+    throw BadResult{"the writers take the result of mesh()"};
+  wqmesh::TetMesh m;
+  const std::vector<double> xyz = typed_array<double>(result, "vertices", "Float64Array", 3);
+  const std::size_t n = xyz.size() / 3;
+  for (std::size_t i = 0; i < n; ++i) m.vertices.push_back({{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}});
+  m.weights = typed_array<double>(result, "weights", "Float64Array", 1);
+  if (m.weights.size() != n)
+    throw BadResult{"result.weights has " + std::to_string(m.weights.size()) + " entries for " +
+                    std::to_string(n) + " vertices"};
+  const std::vector<std::uint32_t> tets = typed_array<std::uint32_t>(result, "tets", "Uint32Array", 4);
+  const std::vector<std::uint32_t> tris = typed_array<std::uint32_t>(result, "boundary", "Uint32Array", 3);
+  for (std::size_t i = 0; i < tets.size(); ++i)
+    if (tets[i] >= n) throw BadResult{"result.tets[" + std::to_string(i) + "] is not a vertex index"};
+  for (std::size_t i = 0; i < tris.size(); ++i)
+    if (tris[i] >= n) throw BadResult{"result.boundary[" + std::to_string(i) + "] is not a vertex index"};
+  for (std::size_t i = 0; i < tets.size(); i += 4)
+    m.tets.push_back({{int(tets[i]), int(tets[i + 1]), int(tets[i + 2]), int(tets[i + 3])}});
+  for (std::size_t i = 0; i < tris.size(); i += 3)
+    m.boundary.push_back({{int(tris[i]), int(tris[i + 1]), int(tris[i + 2])}});
+  m.boundary_facet = typed_array<int>(result, "boundaryFacet", "Int32Array", 1);
+  if (m.boundary_facet.size() != m.boundary.size())
+    throw BadResult{"result.boundaryFacet has " + std::to_string(m.boundary_facet.size()) + " entries for " +
+                    std::to_string(m.boundary.size()) + " boundary triangles"};
+  const std::vector<std::uint8_t> c = typed_array<std::uint8_t>(result, "tetClass", "Uint8Array", 1);
+  if (c.size() != m.tets.size())
+    throw BadResult{"result.tetClass has " + std::to_string(c.size()) + " entries for " +
+                    std::to_string(m.tets.size()) + " tets"};
+  classes.assign(c.begin(), c.end());
+  return m;
+}
+
+val text_value(const std::string& s, bool bytes) {
+  if (bytes) return copy_out(reinterpret_cast<const std::uint8_t*>(s.data()), s.size());
+  return val(s);
+}
+
+// Writes a result of mesh() with the core's writers (the native command
+// line's): "medit" (.mesh), "vtu" (with wqmesh::write_vtu's cell and point
+// data) or "tetgen" ({ node, ele, face, edge }). Strings, or UTF-8 bytes
+// (Uint8Array) when `bytes`. Never throws: { error: { kind: "type" or
+// "limit" or "internal", message } }.
+val write_mesh(const val& result, const std::string& format, bool bytes) {
+  try {
+    std::vector<int> classes;
+    const wqmesh::TetMesh m = mesh_of(result, classes);
+    if (format == "medit") {
+      std::ostringstream out;
+      wqmesh::write_medit(out, m);
+      return text_value(out.str(), bytes);
+    }
+    if (format == "vtu") {
+      std::ostringstream out;
+      wqmesh::TetLabels labels;
+      labels.tet_class = classes;
+      wqmesh::write_vtu(out, m, wqmesh::mesh_quality(m), &labels);
+      return text_value(out.str(), bytes);
+    }
+    if (format == "tetgen") {
+      std::ostringstream node, ele, face, edge;
+      wqmesh::write_tetgen(node, ele, face, edge, m);
+      val out = val::object();
+      out.set("node", text_value(node.str(), bytes));
+      out.set("ele", text_value(ele.str(), bytes));
+      out.set("face", text_value(face.str(), bytes));
+      out.set("edge", text_value(edge.str(), bytes));
+      return out;
+    }
+    return error_value("type", "unknown format '" + format + "' (medit, vtu or tetgen)");
+  } catch (const BadResult& e) {
+    return error_value("type", e.message);
+  } catch (const std::bad_alloc&) {
+    return error_value("limit", "the output does not fit in the wasm memory");
+  } catch (const std::exception& e) {
+    return error_value("internal", std::string("internal error: ") + e.what());
+  }
+}
+
+std::string option_table_json() { return wqmesh::options_json(); }
+
+// The wasm memory (which only grows) and the bytes C++ holds now.
+val memory_stats() {
+  val out = val::object();
+  out.set("heapBytes", static_cast<double>(emscripten_get_heap_size()));
+  out.set("liveBytes", static_cast<double>(live_bytes));
+  return out;
+}
+
 std::string version() { return WQMESH_VERSION; }
 
 }  // namespace
@@ -384,5 +562,8 @@ std::string version() { return WQMESH_VERSION; }
 EMSCRIPTEN_BINDINGS(wqmesh) {
   emscripten::function("check", &check);
   emscripten::function("mesh", &mesh);
+  emscripten::function("writeMesh", &write_mesh);
+  emscripten::function("optionTable", &option_table_json);
+  emscripten::function("memoryStats", &memory_stats);
   emscripten::function("version", &version);
 }

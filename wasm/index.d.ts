@@ -1,9 +1,16 @@
-// wqmesh: types of the package entry (wasm/index.mjs), written by hand.
+// wqmesh: types of the package entry (wasm/index.mjs), written by hand and
+// checked with `tsc --noEmit --strict` (tests/node/types.test.mjs compiles
+// tests/node/types_check.ts against them).
 // SPDX-License-Identifier: GPL-3.0-or-later
 
 /**
- * The bytes of an input file (OFF or STL, ASCII or binary; the format is
- * decided by content). A string is encoded as UTF-8 first.
+ * An input polyhedron: the file's bytes (Uint8Array, Node's Buffer,
+ * ArrayBuffer, or any typed array or DataView, read as its bytes), or the
+ * text of an OFF or STL file. The format (OFF, ASCII STL, binary STL) is
+ * decided by content, never by a name. A string that looks like a file name
+ * or a path (one line, no white space, with a dot or a slash), and anything
+ * else, is refused with a TypeError saying what was expected: read the file
+ * first.
  */
 export type WqmeshInput = Uint8Array | ArrayBuffer | ArrayBufferView | string;
 
@@ -27,6 +34,31 @@ export type InputErrorKind =
   | 'zero_volume'
   /** A failure that is not about the input (a bug): please report it. */
   | 'internal';
+
+/**
+ * The stable `code` of a {@link WqmeshError}: an input error kind, `options`
+ * (an unknown option, a value of the wrong type or out of its range),
+ * `limit` (the run needs more memory than `maxMemoryBytes` or the wasm
+ * memory holds) or `internal`.
+ */
+export type WqmeshErrorCode = InputErrorKind | 'options' | 'limit';
+
+/**
+ * The one error class of the package, thrown (or rejected with) for bad
+ * input, bad options, a memory limit and internal failures; never for a run
+ * stopped at its vertex limit (that is a result with `stats.stopped`).
+ * Bad argument types are a TypeError, an abort a DOMException named
+ * `AbortError`.
+ */
+export class WqmeshError extends Error {
+  constructor(code: WqmeshErrorCode, message: string, options?: { cause?: unknown });
+  /** Always `"WqmeshError"`. */
+  readonly name: 'WqmeshError';
+  /** Stable: what went wrong, e.g. `"open_boundary"` or `"options"`. */
+  readonly code: WqmeshErrorCode;
+  /** The same as {@link WqmeshError.code} (the name earlier versions used). */
+  readonly kind: WqmeshErrorCode;
+}
 
 /** Why an input was rejected. */
 export interface InputErrorReport {
@@ -198,81 +230,171 @@ export interface InvalidReport {
 /** The report of {@link Wqmesh.check}: tell the two apart by `valid`. */
 export type CheckReport = ValidReport | InvalidReport;
 
-/** Options of {@link Wqmesh.check}. */
-export interface CheckOptions {}
+/**
+ * Options of {@link check}: those of the option table marked for `check`.
+ * Every one is optional; unknown names are a {@link WqmeshError} `options`.
+ */
+export interface CheckOptions {
+  /** Margin of the bounding box B, a fraction of the input's largest extent, in [0.001, 1000] (default 0.5). */
+  boxMargin?: number;
+}
 
-/** Options of {@link Wqmesh.mesh}; every one is optional. */
+/**
+ * Options of {@link mesh}, checked by the module against the option table it
+ * shares with the native command line (`wqmesh mesh --rho ...`; the table is
+ * exported as {@link options}): the same names (camelCase here, the flags
+ * there), ranges and defaults. Every one is optional; an unknown name, a
+ * value of the wrong type or out of range is a {@link WqmeshError} `options`
+ * naming the known options or the range.
+ */
 export interface MeshOptions {
-  /** rho0 of rule 6, in [1, 1e6] (default 2.2; the proof needs above 3.41). */
+  /** rho0 of rule 6: tets with R/l above it are split; in [1, 1e6] (default 2.2; the proof needs above 3.41). `--rho`. */
   rho?: number;
-  /** theta of rule 7 and PUMP in degrees, in [0, 90] (default 3). */
+  /** theta of rule 7 and PUMP, degrees: tets with a dihedral angle at most theta are slivers; in [0, 90] (default 3). `--sliver-angle`. */
   sliverAngle?: number;
-  /** false: QMESH alone, no rule 7 and no PUMP (default true). */
+  /** false: QMESH alone, no rule 7 and no PUMP (default true). `--no-pump`. */
   pump?: boolean;
   /**
-   * The run stops with `stopped: "limit"` at this many vertices, in [8, 1e9]
-   * (default 1000000). A limit below the vertices INITIALIZE alone inserts
-   * (the input vertices, the box corners and the vertex-ball points, known in
-   * advance) is refused before meshing, with `stopped: "limit"`.
+   * The run stops with `stats.stopped: "limit"` at this many vertices, a
+   * whole number in [8, 1e9] (default 1000000). A limit below the vertices
+   * INITIALIZE alone inserts (the input vertices, the box corners and the
+   * vertex-ball points, known in advance) is refused before meshing, with
+   * `stopped: "limit"`. `--max-vertices`.
    */
   maxVertices?: number;
   /**
-   * Tets with a larger circumradius are split, finite, at least 0 (default 0:
-   * no bound); next to sharp vertices the bound is the vertex ball's radius
-   * f(u)/4 when that is larger.
+   * Beyond the paper: tets with a larger circumradius are split; in [0, 1e300]
+   * (default 0: no bound); next to sharp vertices the bound is the vertex
+   * ball's radius f(u)/4 when that is larger. `--max-size`.
    */
   maxSize?: number;
-  /** Margin of the bounding box B, a fraction of the largest extent, in [0.001, 1000] (default 0.5). */
+  /** Margin of the bounding box B, a fraction of the largest extent, in [0.001, 1000] (default 0.5). `--box-margin`. */
   boxMargin?: number;
+  /** Also time a plain Delaunay triangulation of the final vertex set: `stats.delaunay_floor_s` (default false). `--measure-floor`. */
+  measureFloor?: boolean;
   /**
-   * The most bytes of wasm memory the call's C++ allocations may hold at once,
-   * in [65536, 4294967296] (default 3221225472, 3 GiB). A run that goes
-   * beyond it stops (reading the input and making the output arrays refuse
-   * the allocation at once; the mesher stops at its next progress call, within
-   * 256 insertions) and {@link Wqmesh.mesh} throws an Error of kind `"limit"`
-   * naming the phase and the vertex count reached; its memory is freed and the
-   * module stays usable. The module's memory grows up to 4 GB (or less where
-   * the browser gives less): a run that needs more throws the same `"limit"`
-   * error. `stats.peak_memory_mb` tells what a finished run held at most.
+   * wasm only (no command-line flag): the most bytes of wasm memory the call's
+   * C++ allocations may hold at once, in [65536, 4294967296] (default
+   * 3221225472, 3 GiB). A run that goes beyond it stops (reading the input
+   * and making the output arrays refuse the allocation at once; the mesher
+   * stops at its next progress call, within 256 insertions) with a
+   * {@link WqmeshError} `limit` naming the phase and the vertex count
+   * reached; its memory is freed and the module stays usable. The module's
+   * memory grows up to 4 GB (or less where the browser gives less): a run
+   * that needs more gets the same `limit` error. `stats.peak_memory_mb`
+   * tells what a finished run held at most.
    */
   maxMemoryBytes?: number;
-  /**
-   * Called after a bounded amount of work with the phase ("initialize",
-   * "conform", "refine", "pump"), an estimated fraction of the run in [0, 1]
-   * and the vertex count; returning false cancels the run.
-   */
-  onProgress?: (phase: string, fraction: number, vertices: number) => boolean | void;
 }
 
-/** The statistics of a run, as `wqmesh mesh --stats` writes them. */
-export interface MeshStats {
-  input_points: number;
-  sharp_elements: number;
-  points_inserted: number;
+/** A phase of a run, in the order they come. */
+export type Phase = 'initialize' | 'conform' | 'refine' | 'pump' | 'extract';
+
+/** What {@link MeshControl.onProgress} receives. */
+export interface Progress {
+  /** The phase the run is in. */
+  phase: Phase;
+  /** Vertices of the triangulation so far (the bounding box included). */
   vertices: number;
+  /** Insertions or pump steps of this phase so far. */
+  steps: number;
+  /**
+   * An estimate of the part of the run done, in [0, 1]; it never goes down
+   * from one call to the next (refinement has no known end, so it may stay
+   * put for a while).
+   */
+  fraction: number;
+}
+
+/** Progress and cancellation of an async call. */
+export interface Control {
+  /**
+   * Aborting it stops the run at once, whatever phase it is in (the worker
+   * is terminated; the next call starts a fresh one), and the promise
+   * rejects with a DOMException named `AbortError`. Already aborted: rejects
+   * without starting.
+   */
+  signal?: AbortSignal;
+}
+
+/** Progress and cancellation of {@link mesh}. */
+export interface MeshControl extends Control {
+  /**
+   * Called on the calling thread as the run goes, at most every 50 ms and at
+   * every phase change. What it returns is ignored (use `signal` to stop).
+   */
+  onProgress?: (progress: Progress) => void;
+}
+
+/** Progress and cancellation of {@link meshSync}. */
+export interface MeshSyncControl {
+  /**
+   * Called after a bounded amount of work (every 256 insertions or pump
+   * steps, and at each phase change); returning false cancels the run, which
+   * then returns with `stats.stopped: "cancelled"`.
+   */
+  onProgress?: (progress: Progress) => boolean | void;
+}
+
+/** The statistics of a run: the keys of `wqmesh mesh --stats` (the native command line's JSON). */
+export interface MeshStats {
+  /** Vertices of the PLC. */
+  input_points: number;
+  /** Sharp vertices plus sharp edges of the input. */
+  sharp_elements: number;
+  /** Points the mesher inserted (the bounding box's corners excluded). */
+  points_inserted: number;
+  /** Vertices of the output mesh (used by interior tets). */
+  vertices: number;
+  /** Interior tets of the output mesh. */
   tets: number;
+  /** The smallest dihedral angle of the mesh, degrees (0 without tets). */
   min_dihedral_deg: number;
+  /** Table 2 of the paper: tets by R/l. */
   radius_edge_bins: { '0.6-1.4': number; '1.4-2.2': number; '>2.2': number };
+  /** Table 2 of the paper: tets by smallest dihedral angle, degrees. */
   dihedral_bins: { '0-3': number; '3-5': number; '5-10': number };
+  /** Tets with R/l at most rho0 and a dihedral angle below theta. */
   slivers: number;
+  /** Tets with R/l above rho0. */
   skinny: number;
+  /** Skinny tets and slivers near a small input angle (allowed there). */
   near_small_angle: number;
+  /** Skinny tets and slivers not near a small input angle (class 3). */
   violations: number;
+  /** Interior slivers at the end of REFINE, before PUMP. */
   slivers_before_pump: number;
+  /** Vertices PUMP gave a weight. */
   pumped_vertices: number;
+  /** The volume enclosed by the input. */
   volume_input: number;
+  /** The sum of the tets' volumes. */
   volume_mesh: number;
+  /** Every subsegment and subfacet is in the mesh. */
   conforming: boolean;
-  /** "" when done, "limit" or "cancelled". */
+  /** "" when done, "limit" (the vertex limit) or "cancelled" (meshSync's onProgress returned false). */
   stopped: '' | 'limit' | 'cancelled';
   /** Why the run stopped, in words (present only when it stopped): the phase
    * that reached the vertex limit, or the two input edges whose small angle
    * needs more vertices than the limit (then the run stops before meshing). */
   stop_message?: string;
+  /** Seconds the run took, reading the input included. */
   time_s: number;
+  /** Tets per second of time_s. */
   tets_per_second: number;
+  /** |V|, the vertices of the whole triangulation (bounding box and outside included). */
+  all_vertices: number;
+  /** With `measureFloor`: seconds of a plain Delaunay triangulation of the final vertex set. */
+  delaunay_floor_s?: number;
+  /** With `measureFloor`: time_s over delaunay_floor_s. */
+  ratio_to_delaunay?: number;
+  /** The options of the run, as the core names them. */
+  options: { rho0: number; theta_deg: number; pump: boolean; box_margin: number; max_vertices: number; max_size: number };
+  /** Points inserted by each rule: [0] INITIALIZE, [i] rule i (1..7). */
   rule_points: number[];
+  /** Time and insertions of each phase. */
   phases: { name: string; time_s: number; points_inserted: number }[];
+  /** The protecting balls (also as arrays in {@link MeshResult.protectingBalls}). */
   protecting_balls: { center: [number, number, number]; radius: number; vertex_ball: boolean }[];
   /**
    * Memory, megabytes: the command line's peak resident set; the wasm
@@ -290,24 +412,170 @@ export interface MeshStats {
   }[];
 }
 
-/** A mesh made by {@link Wqmesh.mesh}: copies, safe to keep and transfer. */
+/**
+ * A mesh made by {@link mesh} or {@link meshSync}. The arrays are the
+ * result's own (transferred out of the worker, not copied), safe to keep and
+ * to transfer again.
+ */
 export interface MeshResult {
+  /** The statistics, as `wqmesh mesh --stats` writes them. */
   stats: MeshStats;
   /** x, y, z per vertex; the input vertices come first, in their order. */
   vertices: Float64Array;
-  /** The weight (a squared radius) of each vertex; 0 where not pumped. */
+  /** The weight (a squared radius) of each vertex; 0 where PUMP gave none. */
   weights: Float64Array;
   /** Four vertex indices per tet, positively oriented. */
   tets: Uint32Array;
   /** Three vertex indices per boundary triangle, oriented outwards. */
   boundary: Uint32Array;
-  /** The input facet of each boundary triangle. */
+  /** The input facet (PLC facet index) of each boundary triangle, -1 where unknown. */
   boundaryFacet: Int32Array;
   /** Per tet: 0 good, 1 skinny near a small angle, 2 sliver near a small angle, 3 violation. */
   tetClass: Uint8Array;
   /** Per tet: its smallest dihedral angle in degrees. */
   minDihedral: Float64Array;
+  /** Per tet: R/l, circumradius (orthoradius once weighted) over shortest edge. */
+  radiusEdge: Float64Array;
+  /** Four numbers per protecting ball: center x, y, z and radius. */
+  protectingBalls: Float64Array;
+  /** Per protecting ball: 1 for a vertex ball (radius f(u)/4), 0 for a doubled segment ball. */
+  protectingBallIsVertex: Uint8Array;
+  /** The module's memory after the call, in the thread that ran it. */
+  memory: MemoryStats;
 }
+
+/** The wasm module's memory. */
+export interface MemoryStats {
+  /** The wasm memory's size in bytes (it only grows). */
+  heapBytes: number;
+  /** The bytes the C++ allocations hold now (between calls: what the module keeps). */
+  liveBytes: number;
+}
+
+/** What the writers need of a result: {@link MeshResult}'s arrays. */
+export type WriterInput = Pick<MeshResult, 'vertices' | 'weights' | 'tets' | 'boundary' | 'boundaryFacet' | 'tetClass'>;
+
+/** Options of the writers. */
+export interface WriteOptions {
+  /** true: UTF-8 bytes (Uint8Array) instead of a string (default false). */
+  bytes?: boolean;
+}
+
+/** The four TetGen files of {@link writeTetgen}. */
+export interface TetgenFiles<T> {
+  /** `.node`: `n 3 0 0` then `i x y z` (0-based). */
+  node: T;
+  /** `.ele`: `m 4 0` then `i a b c d`, positively oriented. */
+  ele: T;
+  /** `.face`: `k 1` then `i a b c marker`, the marker the input facet + 1. */
+  face: T;
+  /** `.edge`: `s 1` then `i a b 1`, the subsegments of the input edges (TetGen's `-rNEFC` checks them). */
+  edge: T;
+}
+
+/** One option of the table shared by the command line and the module. */
+export interface OptionInfo {
+  /** The camelCase name, as in {@link MeshOptions}. */
+  readonly name: string;
+  /** The command-line flag, e.g. `"--sliver-angle"` (a boolean's flag sets the other value), or null: wasm only. */
+  readonly flag: string | null;
+  /** The value's type; an integer is a whole number. */
+  readonly type: 'number' | 'integer' | 'boolean';
+  /** The smallest value allowed (numbers and integers). */
+  readonly min?: number;
+  /** The largest value allowed (numbers and integers). */
+  readonly max?: number;
+  /** The default. */
+  readonly default: number | boolean;
+  /** The commands that take it: `"mesh"`, and `"check"` for those check takes too. */
+  readonly commands: readonly ('check' | 'mesh')[];
+  /** What it does, in one sentence. */
+  readonly doc: string;
+}
+
+/** The option table (from the module, the same as the native command line's). */
+export const options: readonly OptionInfo[];
+
+/** The default of every option, by name. */
+export const defaultOptions: Readonly<Required<MeshOptions>>;
+
+/** The version of the wasm module beside index.mjs, e.g. `"0.1.0"`. */
+export const version: string;
+
+/**
+ * Reads, validates and analyses a polyhedron in a worker (off the calling
+ * thread). A broken input is not an error: the report says `valid: false`
+ * with the kind and a message naming where.
+ * @param input - The polyhedron (see {@link WqmeshInput}).
+ * @param options - See {@link CheckOptions}.
+ * @param control - An AbortSignal.
+ * @returns The report, the same as `wqmesh check FILE` prints.
+ * @throws TypeError (the promise rejects) for input that is not bytes or OFF/STL text;
+ *   WqmeshError `options`; DOMException `AbortError`.
+ */
+export function check(input: WqmeshInput, options?: CheckOptions | null, control?: Control): Promise<CheckReport>;
+
+/**
+ * Meshes a polyhedron with WQMESH (INITIALIZE, CONFORM, REFINE, PUMP) in a
+ * worker: a module Worker in browsers, a worker_threads worker in Node. The
+ * result's arrays are transferred out of the worker.
+ * @param input - The polyhedron (see {@link WqmeshInput}).
+ * @param options - See {@link MeshOptions}.
+ * @param control - onProgress and an AbortSignal.
+ * @returns The mesh of the interior, its classes and statistics; a run
+ *   stopped by `maxVertices` resolves too, with `stats.stopped: "limit"`.
+ * @throws TypeError (the promise rejects) for input that is not bytes or
+ *   OFF/STL text; {@link WqmeshError} with the input's error kind (as
+ *   `check` reports it), `options`, `limit` or `internal`; DOMException
+ *   `AbortError` when the signal aborts (within milliseconds, whatever the phase).
+ */
+export function mesh(input: WqmeshInput, options?: MeshOptions | null, control?: MeshControl): Promise<MeshResult>;
+
+/** The result as a Medit `.mesh` file (the native command line's writer), written in a worker. */
+export function writeMedit(result: WriterInput, options?: WriteOptions & { bytes?: false } & Control): Promise<string>;
+export function writeMedit(result: WriterInput, options: WriteOptions & { bytes: true } & Control): Promise<Uint8Array>;
+
+/**
+ * The result as a VTK `.vtu` file (ASCII XML, the native command line's
+ * writer), written in a worker. Every file has the same arrays: cell data
+ * `min_dihedral` (degrees), `radius_edge` (R/l), `radius_ratio_R_over_r`
+ * (circumradius over inradius, 3 for a regular tet: not VTK's normalised
+ * aspect ratio), `volume`, `class` (as {@link MeshResult.tetClass}); point
+ * data `weight`.
+ */
+export function writeVtu(result: WriterInput, options?: WriteOptions & { bytes?: false } & Control): Promise<string>;
+export function writeVtu(result: WriterInput, options: WriteOptions & { bytes: true } & Control): Promise<Uint8Array>;
+
+/** The result as TetGen `.node`, `.ele`, `.face` and `.edge` files (the native command line's writer), written in a worker. */
+export function writeTetgen(result: WriterInput, options?: WriteOptions & { bytes?: false } & Control): Promise<TetgenFiles<string>>;
+export function writeTetgen(result: WriterInput, options: WriteOptions & { bytes: true } & Control): Promise<TetgenFiles<Uint8Array>>;
+
+/**
+ * Loads the wasm module in the calling thread, for the *Sync forms (which
+ * throw a WqmeshError `internal` until it has resolved).
+ */
+export function ready(): Promise<void>;
+
+/** {@link check} in the calling thread: blocks it for the whole call. Needs {@link ready}. */
+export function checkSync(input: WqmeshInput, options?: CheckOptions | null): CheckReport;
+
+/**
+ * {@link mesh} in the calling thread: **blocks it for the whole run**, so
+ * use it where that is fine (a worker of your own, a script). Needs
+ * {@link ready}. Throws as {@link mesh} rejects (no AbortError: cancel by
+ * returning false from onProgress).
+ */
+export function meshSync(input: WqmeshInput, options?: MeshOptions | null, control?: MeshSyncControl): MeshResult;
+
+/** {@link writeMedit} in the calling thread. Needs {@link ready}. */
+export function writeMeditSync(result: WriterInput, options?: WriteOptions & { bytes?: false }): string;
+export function writeMeditSync(result: WriterInput, options: WriteOptions & { bytes: true }): Uint8Array;
+/** {@link writeVtu} in the calling thread. Needs {@link ready}. */
+export function writeVtuSync(result: WriterInput, options?: WriteOptions & { bytes?: false }): string;
+export function writeVtuSync(result: WriterInput, options: WriteOptions & { bytes: true }): Uint8Array;
+/** {@link writeTetgen} in the calling thread. Needs {@link ready}. */
+export function writeTetgenSync(result: WriterInput, options?: WriteOptions & { bytes?: false }): TetgenFiles<string>;
+export function writeTetgenSync(result: WriterInput, options: WriteOptions & { bytes: true }): TetgenFiles<Uint8Array>;
 
 /** Options of {@link Wqmesh.checkJson}. */
 export interface CheckJsonOptions extends CheckOptions {
@@ -315,63 +583,53 @@ export interface CheckJsonOptions extends CheckOptions {
   pretty?: boolean;
 }
 
-/** The loaded wasm module. */
+/** Options of the earlier {@link Wqmesh.mesh}: the mesh options and a positional progress callback. */
+export interface LegacyMeshOptions extends MeshOptions {
+  /**
+   * Called with the phase, the fraction (never going down) and the vertex
+   * count; returning false cancels the run (`stats.stopped: "cancelled"`).
+   */
+  onProgress?: (phase: string, fraction: number, vertices: number) => boolean | void;
+}
+
+/**
+ * The module loaded in the calling thread by {@link loadWqmesh}: synchronous
+ * functions that block the thread (the form of earlier versions, kept).
+ */
 export interface Wqmesh {
-  /**
-   * Reads, validates and analyses a polyhedron. Never throws for bad input:
-   * a broken file gives `{ valid: false, error: { kind, message } }`.
-   * @param bytes - The file's bytes (OFF or STL, decided by content).
-   * @param options - Reserved for later options.
-   * @returns The parsed report, the same as `wqmesh check FILE` prints.
-   * @throws TypeError when `bytes` is not bytes or a string.
-   */
-  check(bytes: WqmeshInput, options?: CheckOptions): CheckReport;
-
-  /**
-   * Like {@link Wqmesh.check}, but returns the report as JSON text, exactly
-   * as the native command line prints it.
-   * @param bytes - The file's bytes (OFF or STL, decided by content).
-   * @param options - `pretty` indents the JSON.
-   * @returns The JSON report.
-   * @throws TypeError when `bytes` is not bytes or a string.
-   */
+  /** As {@link checkSync}. */
+  check(bytes: WqmeshInput, options?: CheckOptions | null): CheckReport;
+  /** Like {@link Wqmesh.check}, but the report as JSON text, exactly as the native command line prints it. */
   checkJson(bytes: WqmeshInput, options?: CheckJsonOptions): string;
-
-  /**
-   * Meshes a polyhedron with WQMESH (INITIALIZE, CONFORM, REFINE, PUMP).
-   * @param bytes The OFF or STL file's bytes.
-   * @param options See {@link MeshOptions}.
-   * @returns The mesh of the interior, its classes and statistics.
-   * @throws Error with a `kind`: an input error kind (as in {@link InputErrorKind};
-   *   "too_large" for more than 1 GiB of input or more points or faces than
-   *   the readers accept), "options" (an option out of its range), "limit"
-   *   (the run needs more memory than `maxMemoryBytes` or the wasm memory
-   *   holds; the module stays usable) or "internal".
-   */
-  mesh(bytes: WqmeshInput, options?: MeshOptions): MeshResult;
-
-  /**
-   * The version of the wasm module, e.g. `"0.1.0"`.
-   * @returns The version string.
-   */
+  /** As {@link meshSync}; onProgress may also be given among the options, with positional arguments. */
+  mesh(bytes: WqmeshInput, options?: LegacyMeshOptions | null, control?: MeshSyncControl): MeshResult;
+  /** As {@link writeMeditSync}. */
+  writeMedit(result: WriterInput, options?: WriteOptions): string | Uint8Array;
+  /** As {@link writeVtuSync}. */
+  writeVtu(result: WriterInput, options?: WriteOptions): string | Uint8Array;
+  /** As {@link writeTetgenSync}. */
+  writeTetgen(result: WriterInput, options?: WriteOptions): TetgenFiles<string> | TetgenFiles<Uint8Array>;
+  /** The module's memory now. */
+  memoryStats(): MemoryStats;
+  /** The version of the wasm module, e.g. `"0.1.0"`. */
   version(): string;
 }
 
 /** Options of {@link loadWqmesh}. */
 export interface LoadOptions {
   /**
-   * Where the Emscripten module (`wqmesh.mjs`) is. Default: the build tree,
-   * `build/wasm/wasm/wqmesh.mjs` next to this package's `wasm/` folder.
+   * Where the Emscripten module is. Default: `wqmesh.mjs` beside index.mjs
+   * (in a checkout, `scripts/build.sh wasm` puts it there).
    */
   moduleUrl?: string | URL;
 }
 
 /**
- * Loads and instantiates the wasm module. The module is loaded once per URL:
- * later calls return the same object.
- * @param options - Where the module is, if not in the build tree.
- * @returns The module's functions.
- * @throws Error (the promise rejects) when the module is not built or fails to load.
+ * Loads and instantiates the wasm module in the calling thread, once per
+ * URL: later calls return the same object.
+ * @param options - Where the module is, if not beside index.mjs.
+ * @returns The module's synchronous functions.
+ * @throws WqmeshError `internal` (the promise rejects) when the module is missing or fails to load.
  */
 export function loadWqmesh(options?: LoadOptions): Promise<Wqmesh>;
 

@@ -1,61 +1,251 @@
-// wqmesh: the package entry. Loads the wasm module (one ES module file with the
-// wasm inlined, written by the build to build/wasm/wasm/wqmesh.mjs) and wraps
-// its Embind functions.
+// wqmesh: the package entry, the same in Node 20+ and in browsers. The async
+// functions (check, mesh, the writers) run in a worker (worker.mjs: a module
+// Worker in browsers, a worker_threads worker in Node); the *Sync forms and
+// loadWqmesh run in the calling thread. The wasm module (wqmesh.mjs, one ES
+// module with the wasm inlined) and the option table (options.mjs, written
+// from the module's own table) sit beside this file: scripts/build.sh wasm
+// copies them here from the build tree, and `npm pack` does the same in its
+// prepack step. See index.d.ts for the documentation.
 // SPDX-License-Identifier: GPL-3.0-or-later
+import optionTable, { version as moduleVersion } from './options.mjs';
+import { WqmeshError, plainOptions, runCheck, runMesh, runWrite, toBytes, writerInput } from './core.mjs';
 
-/** Where `scripts/build.sh` writes the module, relative to this file. */
-const DEFAULT_MODULE_URL = new URL('../build/wasm/wasm/wqmesh.mjs', import.meta.url);
+export { WqmeshError };
 
-const loaded = new Map();  // module URL -> Promise<Wqmesh>
+/** The option table of the native command line and the module: name, flag, type, range, default, doc. */
+export const options = Object.freeze(optionTable.map((o) => Object.freeze({ ...o, commands: Object.freeze([...o.commands]) })));
 
-/** The bytes of an input as a Uint8Array (no copy when already one). */
-function toBytes(input) {
-  if (input instanceof Uint8Array) return input;  // Node's Buffer included
-  if (input instanceof ArrayBuffer) return new Uint8Array(input);
-  if (ArrayBuffer.isView(input)) return new Uint8Array(input.buffer, input.byteOffset, input.byteLength);
-  if (typeof input === 'string') return new TextEncoder().encode(input);
-  throw new TypeError('wqmesh check(): expected a Uint8Array, ArrayBuffer, typed array, DataView or string, ' +
-                      `got ${input === null ? 'null' : typeof input}`);
+/** The default of every option, by name. */
+export const defaultOptions = Object.freeze(Object.fromEntries(options.map((o) => [o.name, o.default])));
+
+const MODULE_URL = new URL('./wqmesh.mjs', import.meta.url);
+const isNode = typeof process === 'object' && typeof process.versions?.node === 'string';
+// By a computed name, so that bundlers for the browser leave it alone.
+const nodeWorkerThreads = 'node:worker_threads';
+
+// ---- Workers -----------------------------------------------------------------
+
+/**
+ * One worker behind a small interface common to both platforms: post, a
+ * message listener, a failure listener (the worker died or its script did
+ * not load), terminate, and ref/unref (Node: an idle worker does not keep
+ * the process alive).
+ */
+async function startWorker() {
+  if (isNode) {
+    const { Worker } = await import(nodeWorkerThreads);
+    const w = new Worker(new URL('./worker.mjs', import.meta.url));
+    return {
+      post: (m) => w.postMessage(m),
+      onMessage: (f) => w.on('message', f),
+      onFailure: (f) => {
+        w.on('error', (e) => f(e));
+        w.on('exit', (code) => f(new Error(`the worker exited with code ${code}`)));
+      },
+      terminate: () => { w.terminate(); },
+      ref: () => w.ref(),
+      unref: () => w.unref(),
+    };
+  }
+  // The literal `new URL('./worker.mjs', import.meta.url)` inside `new Worker`
+  // lets Vite find and bundle the worker.
+  const w = new Worker(new URL('./worker.mjs', import.meta.url), { type: 'module' });
+  return {
+    post: (m) => w.postMessage(m),
+    onMessage: (f) => w.addEventListener('message', (e) => f(e.data)),
+    onFailure: (f) => {
+      w.addEventListener('error', (e) => { e.preventDefault?.(); f(new Error(e.message || 'the worker script failed to load')); });
+      w.addEventListener('messageerror', () => f(new Error('a message from the worker could not be read')));
+    },
+    terminate: () => w.terminate(),
+    ref: () => {},
+    unref: () => {},
+  };
+}
+
+let idleWorker = null;  // at most one worker waits for the next call
+let nextId = 1;
+
+async function takeWorker() {
+  if (idleWorker && !idleWorker.failed) {
+    const w = idleWorker;
+    idleWorker = null;
+    return w;
+  }
+  const handle = await startWorker();
+  const w = { handle, listener: null, failed: null };
+  handle.onMessage((m) => { if (m && m.id !== undefined) w.listener?.(m); });
+  handle.onFailure((e) => { w.failed = e; w.onFailure?.(e); });
+  return w;
+}
+
+function releaseWorker(w) {
+  w.listener = null;
+  w.onFailure = null;
+  if (w.failed || idleWorker) {
+    w.handle.terminate();
+  } else {
+    w.handle.unref();
+    idleWorker = w;
+  }
+}
+
+function abortError() {
+  return new DOMException('wqmesh: the run was aborted', 'AbortError');
+}
+
+function errorFromWorker(m) {
+  if (m.name === 'TypeError') return new TypeError(m.message);
+  return new WqmeshError(m.code ?? 'internal', m.message);
+}
+
+/**
+ * Runs one request in a worker. An abort of `signal` terminates the worker
+ * at once (whatever the run is doing) and rejects with an AbortError; the
+ * next call starts a fresh worker.
+ */
+async function inWorker(request, { signal, onProgress } = {}) {
+  if (signal !== undefined && !(signal && typeof signal.aborted === 'boolean' && typeof signal.addEventListener === 'function'))
+    throw new TypeError('wqmesh: signal must be an AbortSignal');
+  if (onProgress !== undefined && typeof onProgress !== 'function')
+    throw new TypeError('wqmesh: onProgress must be a function');
+  if (signal?.aborted) throw abortError();
+  const w = await takeWorker();
+  if (signal?.aborted) {
+    releaseWorker(w);
+    throw abortError();
+  }
+  w.handle.ref();
+  const id = nextId++;
+  return new Promise((resolve, reject) => {
+    let settled = false;
+    const finish = (fn, value, keep) => {
+      if (settled) return;
+      settled = true;
+      signal?.removeEventListener('abort', onAbort);
+      if (keep) {
+        releaseWorker(w);
+      } else {
+        w.listener = null;
+        w.handle.terminate();
+      }
+      fn(value);
+    };
+    const onAbort = () => finish(reject, abortError(), false);
+    signal?.addEventListener('abort', onAbort, { once: true });
+    w.onFailure = (e) => finish(reject, new WqmeshError('internal', `wqmesh: the worker failed: ${e.message}`), false);
+    w.listener = (m) => {
+      if (m.id !== id) return;
+      if (m.type === 'progress') {
+        if (onProgress && !settled) {
+          try {
+            onProgress(m.progress);
+          } catch (e) {
+            finish(reject, e, false);
+          }
+        }
+      } else if (m.type === 'done') {
+        finish(resolve, m.value, true);
+      } else if (m.type === 'error') {
+        finish(reject, errorFromWorker(m), true);
+      }
+    };
+    if (w.failed) w.onFailure(w.failed);
+    else w.handle.post({ ...request, id });
+  });
+}
+
+// ---- The async API (in a worker) ---------------------------------------------
+
+/** Validates and analyses a polyhedron in a worker. See index.d.ts. */
+export async function check(input, checkOptions, control = {}) {
+  const bytes = toBytes(input, 'check');
+  const opts = plainOptions(checkOptions, 'check');
+  return inWorker({ op: 'check', bytes, options: opts }, { signal: control?.signal });
+}
+
+/** Meshes a polyhedron in a worker. See index.d.ts. */
+export async function mesh(input, meshOptions, control = {}) {
+  const bytes = toBytes(input, 'mesh');
+  const opts = plainOptions(meshOptions, 'mesh');
+  const onProgress = control?.onProgress;
+  return inWorker({ op: 'mesh', bytes, options: opts, progress: typeof onProgress === 'function' },
+                  { signal: control?.signal, onProgress });
+}
+
+async function write(result, format, writeOptions, fn) {
+  const input = writerInput(result, fn);
+  return inWorker({ op: 'write', result: input, format, asBytes: Boolean(writeOptions?.bytes) },
+                  { signal: writeOptions?.signal });
+}
+
+/** The result as a Medit .mesh file. See index.d.ts. */
+export const writeMedit = (result, writeOptions) => write(result, 'medit', writeOptions, 'writeMedit');
+/** The result as a VTK .vtu file. See index.d.ts. */
+export const writeVtu = (result, writeOptions) => write(result, 'vtu', writeOptions, 'writeVtu');
+/** The result as TetGen files { node, ele, face, edge }. See index.d.ts. */
+export const writeTetgen = (result, writeOptions) => write(result, 'tetgen', writeOptions, 'writeTetgen');
+
+// ---- The calling thread: loadWqmesh, ready and the *Sync forms -----------------
+
+const loaded = new Map();  // module URL -> Promise<instance>
+
+async function instantiate(url) {
+  let factory;
+  try {
+    factory = String(url) === String(MODULE_URL)
+      ? (await import('./wqmesh.mjs')).default   // a literal: bundlers include the module
+      : (await import(String(url))).default;
+  } catch (e) {
+    throw new WqmeshError('internal', `wqmesh: cannot load the wasm module ${url} ` +
+                                      `(in a checkout: bash scripts/build.sh wasm): ${e.message}`, { cause: e });
+  }
+  return factory();
 }
 
 function wrap(module) {
-  const checkJson = (bytes, options = {}) => module.check(toBytes(bytes), Boolean(options.pretty));
-  return {
-    check: (bytes, options = {}) => JSON.parse(checkJson(bytes, { ...options, pretty: false })),
-    checkJson,
-    mesh: (bytes, options = {}) => {
-      const { onProgress, ...rest } = options;
-      const r = module.mesh(toBytes(bytes), rest, typeof onProgress === 'function' ? onProgress : undefined);
-      if (r.error) {
-        const error = new Error(`wqmesh: ${r.error.kind}: ${r.error.message}`);
-        error.kind = r.error.kind;
-        throw error;
+  const sync = {
+    check: (input, opts) => runCheck(module, toBytes(input, 'check'), plainOptions(opts, 'check')),
+    mesh: (input, opts, control) => {
+      const bytes = toBytes(input, 'meshSync');
+      // Earlier versions took onProgress(phase, fraction, vertices) among the options.
+      let onProgress = control?.onProgress;
+      let rest = opts;
+      if (opts && typeof opts === 'object' && typeof opts.onProgress === 'function' && onProgress === undefined) {
+        const { onProgress: legacy, ...others } = opts;
+        onProgress = (p) => legacy(p.phase, p.fraction, p.vertices);
+        rest = others;
       }
-      return { ...r, stats: JSON.parse(r.stats) };
+      if (onProgress !== undefined && typeof onProgress !== 'function')
+        throw new TypeError('wqmesh: onProgress must be a function');
+      return runMesh(module, bytes, plainOptions(rest, 'meshSync'), onProgress);
     },
+    write: (result, format, writeOptions) => runWrite(module, writerInput(result, 'write'), format, writeOptions?.bytes),
+  };
+  return {
+    check: sync.check,
+    checkJson: (input, opts = {}) => {
+      const { pretty, ...rest } = opts ?? {};
+      return module.check(toBytes(input, 'checkJson'), plainOptions(rest, 'checkJson'), Boolean(pretty));
+    },
+    mesh: sync.mesh,
+    writeMedit: (result, o) => sync.write(result, 'medit', o),
+    writeVtu: (result, o) => sync.write(result, 'vtu', o),
+    writeTetgen: (result, o) => sync.write(result, 'tetgen', o),
+    memoryStats: () => module.memoryStats(),
     version: () => module.version(),
   };
 }
 
 /**
- * Loads and instantiates the wasm module once per module URL; later calls
- * return the same object. See index.d.ts for the documentation.
+ * Loads and instantiates the wasm module in the calling thread, once per
+ * module URL; later calls return the same object (blocking, synchronous
+ * functions). See index.d.ts.
  */
-export function loadWqmesh(options = {}) {
-  const url = String(options.moduleUrl ?? DEFAULT_MODULE_URL);
+export function loadWqmesh(loadOptions = {}) {
+  const url = String(loadOptions?.moduleUrl ?? MODULE_URL);
   if (!loaded.has(url)) {
-    const promise = (async () => {
-      let factory;
-      try {
-        factory = (await import(url)).default;
-      } catch (e) {
-        const error = new Error(`wqmesh: cannot load the wasm module ${url} ` +
-                                `(build it with 'bash scripts/build.sh wasm'): ${e.message}`);
-        error.cause = e;
-        throw error;
-      }
-      return wrap(await factory());
-    })();
+    const promise = instantiate(url).then(wrap);
     promise.catch(() => loaded.delete(url));  // a failed load may be retried
     loaded.set(url, promise);
   }
@@ -63,3 +253,30 @@ export function loadWqmesh(options = {}) {
 }
 
 export default loadWqmesh;
+
+let instance = null;
+
+/** Loads the module in the calling thread for the *Sync forms. See index.d.ts. */
+export async function ready() {
+  instance = await loadWqmesh();
+}
+
+function syncInstance(fn) {
+  if (!instance)
+    throw new WqmeshError('internal', `wqmesh ${fn}(): the module is not loaded in this thread: await ready() first`);
+  return instance;
+}
+
+/** check in the calling thread, blocking it. See index.d.ts. */
+export const checkSync = (input, opts) => syncInstance('checkSync').check(input, opts);
+/** mesh in the calling thread, blocking it. See index.d.ts. */
+export const meshSync = (input, opts, control) => syncInstance('meshSync').mesh(input, opts, control);
+/** writeMedit in the calling thread. See index.d.ts. */
+export const writeMeditSync = (result, o) => syncInstance('writeMeditSync').writeMedit(result, o);
+/** writeVtu in the calling thread. See index.d.ts. */
+export const writeVtuSync = (result, o) => syncInstance('writeVtuSync').writeVtu(result, o);
+/** writeTetgen in the calling thread. See index.d.ts. */
+export const writeTetgenSync = (result, o) => syncInstance('writeTetgenSync').writeTetgen(result, o);
+
+/** The version of the wasm module beside this file (the project's version), e.g. "0.1.0". */
+export const version = moduleVersion;

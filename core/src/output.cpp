@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <algorithm>
 #include <limits>
+#include <map>
+#include <utility>
 #include <stdexcept>
 
 #include "wqmesh/json.h"
@@ -92,7 +95,9 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
       vtu_float_array(out, "min_dihedral", m,
                       [&](std::size_t i) { return quality[i].min_dihedral_deg; });
       vtu_float_array(out, "radius_edge", m, [&](std::size_t i) { return quality[i].radius_edge; });
-      vtu_float_array(out, "aspect_ratio", m,
+      // Circumradius over inradius, 3 for a regular tet: not VTK's normalised
+      // "aspect_ratio" or "radius_ratio" (1 for a regular tet), hence the name.
+      vtu_float_array(out, "radius_ratio_R_over_r", m,
                       [&](std::size_t i) { return quality[i].aspect_ratio; });
       vtu_float_array(out, "volume", m, [&](std::size_t i) { return quality[i].volume; });
     }
@@ -150,15 +155,71 @@ void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, con
   }
 }
 
+std::vector<std::array<int, 2>> boundary_segments(const TetMesh& mesh) {
+  // Each edge of the closed boundary with the facets of the triangles at it.
+  std::map<std::pair<int, int>, std::vector<int>> facets;
+  for (std::size_t i = 0; i < mesh.boundary.size(); ++i) {
+    const std::array<int, 3>& f = mesh.boundary[i];
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      facets[{std::min(a, b), std::max(a, b)}].push_back(facet_of(mesh, i));
+    }
+  }
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& [edge, fs] : facets) {
+    bool segment = fs.size() != 2;  // a border edge or a non-manifold one: keep it
+    for (int f : fs) segment = segment || f < 0 || f != fs[0];
+    if (segment) edges.push_back({{edge.first, edge.second}});
+  }
+  // Orient the subsegments of each chain one way (TetGen's -r links two
+  // subsegments at a vertex only when one ends where the next begins): walk
+  // from every vertex that is not inside a chain (not on exactly two
+  // subsegments) along the unvisited subsegments, then around closed loops.
+  std::map<int, std::vector<std::size_t>> at;  // vertex -> its subsegments
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (int v : edges[i]) at[v].push_back(i);
+  std::vector<bool> done(edges.size(), false);
+  std::vector<std::array<int, 2>> out;
+  auto walk = [&](int v, std::size_t e) {
+    while (!done[e]) {
+      done[e] = true;
+      const int w = edges[e][0] == v ? edges[e][1] : edges[e][0];
+      out.push_back({{v, w}});
+      const std::vector<std::size_t>& next = at[w];
+      if (next.size() != 2) break;
+      e = next[0] == e ? next[1] : next[0];
+      v = w;
+    }
+  };
+  for (int pass = 0; pass < 2; ++pass)
+    for (const auto& [v, es] : at)
+      if (pass == 1 || es.size() != 2)
+        for (std::size_t e : es) walk(v, e);
+  return out;
+}
+
+void write_tetgen_edges(std::ostream& edge, const TetMesh& mesh) {
+  const std::vector<std::array<int, 2>> segments = boundary_segments(mesh);
+  edge << segments.size() << " 1\n";
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    edge << i << ' ' << segments[i][0] << ' ' << segments[i][1] << " 1\n";
+}
+
+void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge,
+                  const TetMesh& mesh) {
+  write_tetgen(node, ele, face, mesh);
+  write_tetgen_edges(edge, mesh);
+}
+
 void write_tetgen(const std::string& base, const TetMesh& mesh) {
-  const std::string names[3] = {base + ".node", base + ".ele", base + ".face"};
-  std::ofstream files[3];
-  for (int i = 0; i < 3; ++i) {
+  const std::string names[4] = {base + ".node", base + ".ele", base + ".face", base + ".edge"};
+  std::ofstream files[4];
+  for (int i = 0; i < 4; ++i) {
     files[i].open(names[i]);
     if (!files[i]) throw std::runtime_error("write_tetgen: cannot open " + names[i]);
   }
-  write_tetgen(files[0], files[1], files[2], mesh);
-  for (int i = 0; i < 3; ++i) {
+  write_tetgen(files[0], files[1], files[2], files[3], mesh);
+  for (int i = 0; i < 4; ++i) {
     files[i].close();
     if (!files[i]) throw std::runtime_error("write_tetgen: cannot write " + names[i]);
   }

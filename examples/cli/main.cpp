@@ -25,6 +25,7 @@
 #include "wqmesh/json.h"
 #include "wqmesh/mesh_reader.h"
 #include "wqmesh/mesher.h"
+#include "wqmesh/options.h"
 #include "wqmesh/output.h"
 #include "wqmesh/quality.h"
 #include "wqmesh/report.h"
@@ -49,12 +50,12 @@ constexpr const char* kUsage =
     "       [--no-pump] [--max-vertices N] [--max-size H] [--box-margin M] [--quiet]\n"
     "       [--measure-floor]\n"
     "      Mesh the polyhedron IN with WQMESH. OUT ends in .mesh (Medit), .vtu\n"
-    "      (VTK, with per-tet quality and class) or .ele (TetGen: .node, .ele and\n"
-    "      .face beside each other). --rho: rho0 of rule 6 (default 2.2);\n"
+    "      (VTK, with per-tet quality and class) or .ele (TetGen: .node, .ele,\n"
+    "      .face and .edge beside each other). --rho: rho0 of rule 6 (default 2.2);\n"
     "      --sliver-angle: theta of rule 7 and PUMP in degrees (default 3);\n"
     "      --no-pump: QMESH alone (no rule 7, no PUMP); --max-vertices: stop\n"
     "      with exit code 3 at this many vertices (default 1000000); --max-size:\n"
-    "      split tets with a larger circumradius (default: none; inside a vertex\n"
+    "      split tets with a larger circumradius (default 0: none; inside a vertex\n"
     "      ball the bound is the ball's radius f(u)/4 if larger). Progress on\n"
     "      stderr unless --quiet. Exit code 0: done; 1: usage or internal error;\n"
     "      2: invalid input; 3: stopped by the vertex limit (the mesh is written\n"
@@ -83,6 +84,24 @@ bool parse_double(const std::string& text, double& out) {
   errno = 0;
   out = std::strtod(text.c_str(), &end);
   return errno == 0 && end != text.c_str() && *end == '\0';
+}
+
+// Reads the option of `spec` at args[i] (its flag) into `run` with the core's
+// option table (wqmesh/options.h, the ranges of the wasm module too): a
+// boolean flag sets its value, any other flag takes the next argument.
+// Advances i past what it read. Returns "" or the usage error.
+std::string parse_option(const std::vector<std::string>& args, std::size_t& i, const wqmesh::OptionSpec& spec,
+                         wqmesh::RunOptions& run) {
+  double value = spec.flag_value;
+  if (spec.type != wqmesh::OptionType::boolean) {
+    if (i + 1 >= args.size() || !parse_double(args[i + 1], value))
+      return std::string(spec.flag) + " needs " + wqmesh::option_range_text(spec);
+    ++i;
+  }
+  const std::string error = wqmesh::check_option_value(spec, value, spec.flag);
+  if (!error.empty()) return error;
+  wqmesh::apply_option(run, spec, value);
+  return "";
 }
 
 // Reads the bytes of an input polyhedron, at most InputLimits::max_bytes of
@@ -124,16 +143,14 @@ bool read_input(const std::string& path, std::string& data, wqmesh::CheckResult&
 int run_check(const std::vector<std::string>& args) {
   std::string path;
   bool pretty = true;
-  wqmesh::AnalysisOptions options;
+  wqmesh::RunOptions run;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--compact") {
       pretty = false;
-    } else if (a == "--box-margin") {
-      if (i + 1 >= args.size() || !parse_double(args[i + 1], options.box_margin) ||
-          !(options.box_margin > 0) || options.box_margin > 1e6)
-        return usage_error("--box-margin needs a positive number");
-      ++i;
+    } else if (const wqmesh::OptionSpec* spec = wqmesh::find_option_flag(a); spec != nullptr && spec->check) {
+      const std::string error = parse_option(args, i, *spec, run);
+      if (!error.empty()) return usage_error(error);
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "' for check");
     } else if (path.empty()) {
@@ -152,7 +169,7 @@ int run_check(const std::vector<std::string>& args) {
     return 2;
   }
 
-  const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, options);
+  const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, run.analysis);
   for (const std::string& w : result.warnings) std::cerr << "wqmesh: warning: " << w << "\n";
   std::cout << wqmesh::check_json(result, pretty) << "\n";
   if (!result.valid) {
@@ -178,40 +195,21 @@ bool read_file(const std::string& path, std::string& data) {
 int run_mesh(const std::vector<std::string>& args) {
   std::string path, out, stats_path;
   bool quiet = false;
-  wqmesh::MeshOptions options;
-  wqmesh::AnalysisOptions analysis_options;
+  wqmesh::RunOptions run;
+  const wqmesh::MeshOptions& options = run.mesh;
+  const wqmesh::AnalysisOptions& analysis_options = run.analysis;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
-    auto number = [&](double& target, double lo, double hi) {
-      if (i + 1 >= args.size() || !parse_double(args[i + 1], target) || !(target >= lo) || !(target <= hi))
-        return false;
-      ++i;
-      return true;
-    };
-    double n = 0;
+    const wqmesh::OptionSpec* spec = wqmesh::find_option_flag(a);
     if (a == "-o" && i + 1 < args.size()) {
       out = args[++i];
     } else if (a == "--stats" && i + 1 < args.size()) {
       stats_path = args[++i];
-    } else if (a == "--rho") {
-      if (!number(options.rho0, 1, 1e6)) return usage_error("--rho needs a number of at least 1");
-    } else if (a == "--sliver-angle") {
-      if (!number(options.theta_deg, 0, 90)) return usage_error("--sliver-angle needs degrees in [0, 90]");
-    } else if (a == "--no-pump") {
-      options.pump = false;
-    } else if (a == "--max-vertices") {
-      if (!number(n, 8, 1e9) || n != std::floor(n)) return usage_error("--max-vertices needs a whole number >= 8");
-      options.max_vertices = static_cast<std::size_t>(n);
-    } else if (a == "--max-size") {
-      if (!number(options.max_size, 0, 1e300) || options.max_size <= 0)
-        return usage_error("--max-size needs a positive number");
-    } else if (a == "--box-margin") {
-      if (!number(options.box_margin, 1e-3, 1e3)) return usage_error("--box-margin needs a number in [0.001, 1000]");
-      analysis_options.box_margin = options.box_margin;
+    } else if (spec != nullptr) {
+      const std::string error = parse_option(args, i, *spec, run);
+      if (!error.empty()) return usage_error(error);
     } else if (a == "--quiet") {
       quiet = true;
-    } else if (a == "--measure-floor") {
-      options.measure_floor = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "' for mesh");
     } else if (path.empty()) {
@@ -267,7 +265,10 @@ int run_mesh(const std::vector<std::string>& args) {
       } else {
         wqmesh::TetLabels labels;
         for (wqmesh::TetClass c : result.tet_class) labels.tet_class.push_back(static_cast<int>(c));
-        wqmesh::write_vtu(f, result.mesh, result.quality, &labels);
+        // The same arrays on every run: weights of 0 where PUMP moved nothing.
+        wqmesh::TetMesh weighted = result.mesh;
+        weighted.weights.resize(weighted.vertices.size(), 0.0);
+        wqmesh::write_vtu(f, weighted, result.quality, &labels);
       }
       if (!f) {
         std::cerr << "wqmesh: writing '" << out << "' failed\n";

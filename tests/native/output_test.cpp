@@ -347,7 +347,7 @@ TEST(Output, VtuIsWellFormedAndRoundTrips) {
   ASSERT_NE(cd, nullptr);
   const std::vector<double> md = numbers(cd->array("min_dihedral"));
   const std::vector<double> re = numbers(cd->array("radius_edge"));
-  const std::vector<double> ar = numbers(cd->array("aspect_ratio"));
+  const std::vector<double> ar = numbers(cd->array("radius_ratio_R_over_r"));
   const std::vector<double> vol = numbers(cd->array("volume"));
   const std::vector<double> cls = numbers(cd->array("class"));
   ASSERT_EQ(md.size(), 2u);

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <array>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -27,9 +28,14 @@ struct TetLabels {
 /// (format_double), so they read back bit-exact.
 void write_medit(std::ostream& out, const TetMesh& mesh);
 
-/// VTK XML UnstructuredGrid (.vtu, ASCII) with cell data: min_dihedral,
-/// radius_edge, aspect_ratio, volume, and "class" when labels are given; point
-/// data "weight" when the mesh is weighted.
+/// VTK XML UnstructuredGrid (.vtu, ASCII) with cell data: min_dihedral
+/// (degrees), radius_edge (R/l, the orthoradius once weighted),
+/// radius_ratio_R_over_r (circumradius over inradius, 3 for a regular tet;
+/// not VTK's normalised aspect ratio), volume, and "class" when labels are
+/// given; point data "weight" when the mesh is weighted (mesh.weights not
+/// empty). The command line and the wasm writer pass every array on every run
+/// (weights of 0 where PUMP moved nothing), so that files of two runs hold the
+/// same arrays.
 /// Cells are VTK_TETRA (10) with the mesh's vertex order. `quality` is either
 /// empty (no quality arrays) or has one entry per tet (mesh_quality(mesh)); the
 /// labels, if given, one per tet; otherwise std::invalid_argument. Float64
@@ -38,13 +44,28 @@ void write_medit(std::ostream& out, const TetMesh& mesh);
 void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQuality>& quality,
                const TetLabels* labels = nullptr);
 
-/// TetGen files: `base.node`, `base.ele`, `base.face` (0-based indices; face
-/// markers = input facet + 1). Throws std::runtime_error if a file cannot be
-/// written. Formats: .node `n 3 0 0` then `i x y z` (weights are not written);
-/// .ele `m 4 0` then `i a b c d` (the mesh's orientation); .face `k 1` then
-/// `i a b c marker`.
+/// TetGen files: `base.node`, `base.ele`, `base.face`, `base.edge` (0-based
+/// indices; face markers = input facet + 1). Throws std::runtime_error if a
+/// file cannot be written. Formats: .node `n 3 0 0` then `i x y z` (weights
+/// are not written); .ele `m 4 0` then `i a b c d` (the mesh's orientation);
+/// .face `k 1` then `i a b c marker`; .edge `s 1` then `i a b 1`, the
+/// boundary_segments (TetGen's `-rNEFC` reads them to check the segments).
 void write_tetgen(const std::string& base, const TetMesh& mesh);
+void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge,
+                  const TetMesh& mesh);
+/// The first three files only (no .edge).
 void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, const TetMesh& mesh);
+
+/// The subsegments of the input edges: the boundary edges whose two boundary
+/// triangles lie in different input facets (or whose facet is unknown, -1, or
+/// that do not have exactly two boundary triangles), as vertex pairs, each
+/// chain of subsegments oriented one way (a subsegment begins where the one
+/// before it on its input edge ends, as TetGen's -r wants). Adjacent coplanar
+/// faces are one facet of the PLC, so an edge between two facets lies on an
+/// input edge.
+std::vector<std::array<int, 2>> boundary_segments(const TetMesh& mesh);
+/// The .edge file of write_tetgen: boundary_segments with marker 1.
+void write_tetgen_edges(std::ostream& edge, const TetMesh& mesh);
 
 /// The statistics as a JSON object (keys as in MeshStats, bins keyed by their
 /// ranges: "0.6-1.4", "1.4-2.2", ">2.2" and "0-3", "3-5", "5-10").
