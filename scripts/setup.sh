@@ -2,7 +2,8 @@
 # wqmesh: installs what the build and the tests need, and only what is missing
 # (idempotent): Debian packages for the native, wasm, fuzz (clang-14 with
 # libFuzzer) and sanitizer builds, then the npm packages of package-lock.json.
-# Chromium (browser tests) is not installed yet.
+# Chromium (Debian's package, /usr/bin/chromium) runs the browser tests
+# (tests/browser/, through playwright-core).
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -41,6 +42,8 @@ need_cmd node nodejs
 # GNU time: peak memory in examples/node/benchmark.mjs (the shell keyword is not it).
 need_path /usr/bin/time time
 need_cmd npm npm
+# The browser tests (tests/browser/) drive Debian's Chromium with playwright-core.
+need_path /usr/bin/chromium chromium
 
 # De-duplicate, keeping the order.
 if [ ${#missing[@]} -gt 0 ]; then

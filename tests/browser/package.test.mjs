@@ -1,0 +1,130 @@
+// wqmesh: the package in a browser (Debian's Chromium through playwright-core,
+// tests/browser/lib/browser.mjs), served by scripts/serve.mjs with the strict
+// policy `Content-Security-Policy: script-src 'self' 'wasm-unsafe-eval'` on
+// every answer (no 'unsafe-eval', no inline script). A page imports
+// wasm/index.mjs with no bundler, meshes a model in a module worker (the
+// mesh must conform, be positively oriented and keep the input volume),
+// aborts a second, long run (AbortError, within 100 ms of the abort) and
+// meshes again. No CSP violation, no page error, no failed request.
+// Skipped when Chromium or playwright-core is missing (an error under CI).
+// Run: node --test tests/browser/
+// SPDX-License-Identifier: GPL-3.0-or-later
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { dirname, join, resolve } from 'node:path';
+import { test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import { serve } from '../../scripts/serve.mjs';
+import { browserSkipReason, launchBrowser } from './lib/browser.mjs';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const CSP = "script-src 'self' 'wasm-unsafe-eval'";
+const skip = browserSkipReason() || false;
+
+// The page and its module script exist only for this test (routed, never on
+// disk); the package files come from the server.
+const PAGE = '<!doctype html><meta charset="utf-8"><title>wqmesh smoke</title>' +
+             '<script type="module" src="/__smoke/smoke.mjs"></script>';
+const SCRIPT = `
+import * as wqmesh from '/wasm/index.mjs';
+window.violations = [];
+document.addEventListener('securitypolicyviolation', (e) => window.violations.push(e.violatedDirective + ' ' + e.blockedURI));
+window.wqmesh = wqmesh;
+window.smokeReady = true;
+`;
+
+// Signed volume of the tets (each must be positive) and the smallest one.
+function volumes(v, t) {
+  let total = 0;
+  let smallest = Infinity;
+  for (let i = 0; i < t.length; i += 4) {
+    const p = [0, 1, 2, 3].map((k) => [v[3 * t[i + k]], v[3 * t[i + k] + 1], v[3 * t[i + k] + 2]]);
+    const a = [0, 1, 2].map((c) => p[1][c] - p[0][c]);
+    const b = [0, 1, 2].map((c) => p[2][c] - p[0][c]);
+    const d = [0, 1, 2].map((c) => p[3][c] - p[0][c]);
+    const o = (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
+    total += o;
+    smallest = Math.min(smallest, o);
+  }
+  return { total, smallest };
+}
+
+test('the package meshes in a module worker and aborts under a strict CSP', { skip, timeout: 240000 }, async () => {
+  const server = await serve({ root, csp: CSP });
+  const browser = await launchBrowser();
+  try {
+    const { page } = browser;
+    await page.route(`${server.url}__smoke/**`, (route) => {
+      const url = route.request().url();
+      const html = url.endsWith('.html');
+      route.fulfill({ status: 200, body: html ? PAGE : SCRIPT,
+                      headers: { 'Content-Type': html ? 'text/html' : 'text/javascript', 'Content-Security-Policy': CSP } });
+    });
+    await page.goto(`${server.url}__smoke/index.html`);
+    await page.waitForFunction(() => window.smokeReady === true);
+
+    const spike = readFileSync(join(root, 'examples/models/spike.off'), 'utf8');
+    const first = await page.evaluate(async (text) => {
+      const fractions = [];
+      const r = await window.wqmesh.mesh(text, { rho: 2.2 }, { onProgress: (p) => fractions.push(p.fraction) });
+      const typed = ['vertices', 'tets', 'weights', 'tetClass', 'minDihedral'].every((k) => ArrayBuffer.isView(r[k]));
+      return { stats: r.stats, vertices: Array.from(r.vertices), tets: Array.from(r.tets), fractions, typed,
+               mainThreadHasModule: typeof window.createWqmeshModule !== 'undefined' };
+    }, spike);
+    assert.ok(first.typed, 'result arrays are typed arrays');
+    assert.equal(first.stats.conforming, true);
+    assert.equal(first.stats.stopped, '');
+    assert.equal(first.tets.length, 4 * first.stats.tets);
+    const v = volumes(first.vertices, first.tets);
+    assert.ok(v.smallest > 0, 'every tet is positively oriented');
+    assert.ok(Math.abs(v.total - first.stats.volume_input) <= 1e-9 * first.stats.volume_input,
+              `volume ${v.total} vs ${first.stats.volume_input}`);
+    assert.ok(first.fractions.length > 0, 'progress reported');
+    for (let i = 1; i < first.fractions.length; ++i) assert.ok(first.fractions[i] >= first.fractions[i - 1], 'progress never goes down');
+
+    // A long run (a box refined to a small size bound), aborted once it refines.
+    const box = readFileSync(join(root, 'examples/models/box.off'), 'utf8');
+    const aborted = await page.evaluate(async (text) => {
+      const controller = new AbortController();
+      let abortedAt = 0;
+      let phase = '';
+      try {
+        await window.wqmesh.mesh(text, { maxSize: 0.02, maxVertices: 2000000 }, {
+          signal: controller.signal,
+          onProgress: (p) => {
+            if (!abortedAt && p.phase === 'refine' && p.vertices > 2000) {
+              phase = p.phase;
+              abortedAt = performance.now();
+              controller.abort();
+            }
+          },
+        });
+        return { name: 'resolved' };
+      } catch (e) {
+        return { name: e.name, isDomException: e instanceof DOMException, ms: performance.now() - abortedAt, phase };
+      }
+    }, box);
+    assert.equal(aborted.name, 'AbortError', JSON.stringify(aborted));
+    assert.ok(aborted.isDomException);
+    assert.equal(aborted.phase, 'refine');
+    assert.ok(aborted.ms < 100, `rejected ${aborted.ms} ms after the abort`);
+
+    const again = await page.evaluate(async (text) => (await window.wqmesh.mesh(text)).stats, box);
+    assert.equal(again.conforming, true, 'a run after an abort succeeds');
+
+    const violations = await page.evaluate(() => window.violations);
+    assert.deepEqual(violations, [], 'no Content-Security-Policy violation');
+    assert.deepEqual(browser.pageErrors, []);
+    assert.deepEqual(browser.failedRequests, []);
+    const csp = browser.consoleMessages.filter((m) => /Content Security Policy|unsafe-eval/i.test(m.text));
+    assert.deepEqual(csp, [], 'no CSP message on the console');
+    const urls = browser.requests.map((r) => new URL(r.url).pathname);
+    assert.ok(urls.includes('/wasm/worker.mjs'), `the worker was loaded: ${urls.join(' ')}`);
+    assert.ok(urls.includes('/wasm/wqmesh.mjs'), 'the module was loaded');
+    assert.ok(!first.mainThreadHasModule);
+  } finally {
+    await browser.close();
+    await server.close();
+  }
+});
