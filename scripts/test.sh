@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # wqmesh: sets up, builds, then runs every test: the native GoogleTest tests
-# (ctest), the Node tests (wasm module vs command line), the GoogleTest tests
+# (ctest), the Node tests (wasm module vs command line), the browser tests
+# (the package and the web page in headless Chromium), the GoogleTest tests
 # again under AddressSanitizer and UndefinedBehaviorSanitizer (build/asan,
 # the project's own small models: the tests that read ../shared/models are
 # left out) and each libFuzzer target of the input path for 20 s
@@ -18,6 +19,15 @@ echo "test: ctest --test-dir build/native --output-on-failure -j2"
 ctest --test-dir build/native --output-on-failure -j2 || status=1
 echo "test: node --test tests/node/"
 node --test tests/node/ || status=1
+# The page (build/web, from web/ and the wasm module just built) and the
+# browser tests on Debian's headless Chromium: the package in a page, and the
+# page itself (tests/browser/page*.test.mjs).
+echo "test: node web/build.mjs && node --test tests/browser/"
+if node web/build.mjs; then
+  node --test tests/browser/ || status=1
+else
+  status=1
+fi
 
 # Sanitizers: any report aborts its test (-fno-sanitize-recover, halt_on_error).
 # build/asan's tests see no ../shared/models (tests/native/CMakeLists.txt), so

@@ -1,0 +1,357 @@
+// wqmesh: browser tests of the web page (issue 12), with playwright-core
+// driving Debian's headless Chromium against the built page (build/web, made
+// by `node web/build.mjs`) served by scripts/serve.mjs on 127.0.0.1. Covers:
+// file input and example picker (numbers equal the package's result for the
+// same model and options), every broken model of ../shared/models (its error
+// code and message, then a good model meshes), Cancel (cancelled within a
+// second, the next run succeeds), a rho0 change during a run restarts it,
+// the URL state round trip, the clipping plane (whole tets: the drawn faces
+// are exactly the faces of kept tets whose neighbour is not kept, computed
+// here from the package's mesh), downloads, no long task on the main thread
+// during a run, no console error or warning, no request off 127.0.0.1, no
+// horizontal overflow at phone width; saves screenshots under
+// build/screenshots/. Skips when Chromium or the built page is missing
+// (unless CI is set); the broken-model test skips without ../shared/models.
+// Run: node web/build.mjs && node --test tests/browser/
+// SPDX-License-Identifier: GPL-3.0-or-later
+import assert from 'node:assert/strict';
+import { existsSync, mkdirSync, readFileSync, readdirSync } from 'node:fs';
+import { dirname, join, resolve } from 'node:path';
+import { after, before, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import { serve } from '../../scripts/serve.mjs';
+import { browserSkipReason, CHROMIUM, CHROMIUM_ARGS } from './lib/browser.mjs';
+import { formatStat, statValue, STAT_GROUPS } from '../../web/stats.mjs';
+import { neighbours, TET_FACES } from '../../web/tetfaces.mjs';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const webRoot = join(root, 'build/web');
+const shared = join(root, '../shared/models');
+const shots = join(root, 'build/screenshots');
+const BROKEN = ['cubes.off', 'cube-ouvert.off', 'self_intersecting.off', 'issue1580-zero-area-triangle.stl',
+  'bad-stl-pcbvicebar.stl'];
+
+const missing = browserSkipReason() ||
+  (!existsSync(join(webRoot, 'index.html')) ? 'build/web is missing (node web/build.mjs)' : '');
+if (missing && process.env.CI) throw new Error(`browser tests: ${missing}`);
+const skip = missing || false;
+
+// Numbers that depend on the machine, not on the mesh.
+const TIMING = new Set(['time_s', 'tets_per_second', 'peak_memory_mb']);
+const STAT_KEYS = STAT_GROUPS.flatMap(([, rows]) => rows.map(([k]) => k)).filter((k) => !TIMING.has(k));
+
+// Chromium without a GPU composites a WebGL canvas by reading it back and
+// says so on the console for every page with WebGL, the page's own or an
+// empty one (checked with a page that only clears a canvas): that one line
+// is the browser's, not the page's, and is the only message let through.
+const BROWSER_NOISE = /GL Driver Message \(OpenGL, Performance, GL_CLOSE_PATH_NV, High\): GPU stall due to ReadPixels/;
+
+let browser, server, pkg;
+const consoleProblems = [];
+const offHostRequests = [];
+
+async function launch() {
+  const { chromium } = await import('playwright-core');
+  return chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS });
+}
+
+before(async () => {
+  if (skip) return;
+  browser = await launch();
+  server = await serve({ root: webRoot });
+  pkg = await import('../../wasm/index.mjs');
+  await pkg.ready();
+  mkdirSync(shots, { recursive: true });
+});
+after(async () => {
+  await browser?.close();
+  await server?.close();
+});
+
+/** A new page at `width` x `height` that records console problems and requests. */
+async function open(query = '', { width = 1280, height = 800, longTasks = false } = {}) {
+  const context = await browser.newContext({ viewport: { width, height }, acceptDownloads: true });
+  if (longTasks) {
+    // Every task over 50 ms on the main thread, from the first script on.
+    await context.addInitScript(() => {
+      window.__longTasks = [];
+      new PerformanceObserver((l) => {
+        for (const e of l.getEntries()) window.__longTasks.push({ start: e.startTime, duration: e.duration });
+      }).observe({ type: 'longtask', buffered: true });
+    });
+  }
+  const page = await context.newPage();
+  page.on('console', (m) => {
+    if ((m.type() === 'error' || m.type() === 'warning') && !BROWSER_NOISE.test(m.text())) {
+      consoleProblems.push(`${m.type()}: ${m.text()}`);
+    }
+  });
+  page.on('pageerror', (e) => consoleProblems.push(`pageerror: ${e.message}`));
+  page.on('worker', (w) => w.on('console', (m) => {
+    if ((m.type() === 'error' || m.type() === 'warning') && !BROWSER_NOISE.test(m.text())) {
+      consoleProblems.push(`worker ${w.url()}: ${m.type()}: ${m.text()}`);
+    }
+  }));
+  page.on('request', (r) => {
+    const u = r.url();
+    if (!u.startsWith('http://127.0.0.1:') && !u.startsWith('blob:http://127.0.0.1:') && !u.startsWith('data:')) {
+      offHostRequests.push(u);
+    }
+  });
+  await page.goto(`${server.url}${query}`);
+  return page;
+}
+
+const state = (page) => page.evaluate(() => document.body.dataset.state);
+async function waitState(page, wanted, timeout = 90_000) {
+  await page.waitForFunction((w) => w.includes(document.body.dataset.state), [].concat(wanted), { timeout });
+  return state(page);
+}
+
+/** The page's shown numbers, by data-stat key. */
+const shownStats = (page) => page.evaluate(() =>
+  Object.fromEntries([...document.querySelectorAll('[data-stat]')].map((e) => [e.dataset.stat, e.textContent])));
+
+/** The package's result for a model and the page's run options. */
+function packageResult(bytes, options) {
+  return pkg.meshSync(bytes, options);
+}
+
+function assertSameNumbers(shown, stats, what) {
+  for (const k of STAT_KEYS) {
+    assert.equal(shown[k], formatStat(k, statValue(stats, k)), `${what}: data-stat ${k}`);
+  }
+}
+
+const DEFAULTS = { rho: 2.2, sliverAngle: 3, pump: true, maxSize: 0, maxVertices: 1000000 };
+const model = (name) => readFileSync(join(root, 'examples/models', name));
+
+test('file input: spike.off meshes and shows the package\'s numbers', { skip }, async () => {
+  const page = await open();
+  assert.equal(await state(page), 'idle');
+  assert.match(await page.textContent('#empty'), /drop a polyhedron here/i);
+  await page.setInputFiles('input[type=file]', join(root, 'examples/models/spike.off'));
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  const shown = await shownStats(page);
+  assertSameNumbers(shown, packageResult(model('spike.off'), DEFAULTS).stats, 'spike.off');
+  // The analysis before meshing: the report's numbers, and the page's own
+  // marks agree with them on this model.
+  const report = pkg.checkSync(model('spike.off'));
+  assert.equal(await page.textContent('[data-check=sharp_edges]'), String(report.analysis.counts.sharp_edges));
+  const counts = await page.evaluate(() => window.__wqmeshPage.surface.counts);
+  assert.equal(counts.sharpVertices, report.analysis.counts.sharp_vertices);
+  assert.equal(counts.sharpEdges, report.analysis.counts.sharp_edges);
+  assert.equal(counts.edges, report.plc.edges);
+  await page.context().close();
+});
+
+test('example picker, URL round trip, previous run side by side', { skip }, async () => {
+  const page = await open();
+  await page.waitForFunction(() => document.querySelectorAll('#example option').length > 1);
+  const names = await page.$$eval('#example option', (o) => o.map((x) => x.value).filter(Boolean));
+  const files = readdirSync(join(root, 'examples/models')).filter((f) => /\.(off|stl)$/i.test(f)).sort();
+  assert.deepEqual(names, files);
+  await page.selectOption('#example', 'thin_wedge.off');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  // A parameter change runs again (automatic runs are on by default); the
+  // previous run stays beside it.
+  const seq = await page.evaluate(() => window.__wqmeshPage.runSeq);
+  await page.fill('#p-sliverAngle', '5');
+  await page.dispatchEvent('#p-sliverAngle', 'change');
+  await page.waitForFunction((s) => window.__wqmeshPage.runSeq > s && document.body.dataset.state !== 'running', seq,
+                             { timeout: 90_000 });
+  assert.equal(await state(page), 'done');
+  const options = { ...DEFAULTS, sliverAngle: 5 };
+  const stats = packageResult(model('thin_wedge.off'), options).stats;
+  const shown = await shownStats(page);
+  assertSameNumbers(shown, stats, 'thin_wedge.off theta 5');
+  const prevTets = await page.textContent('[data-prev-stat=tets]');
+  assert.equal(prevTets, String(packageResult(model('thin_wedge.off'), DEFAULTS).stats.tets));
+  const url = page.url();
+  assert.match(url, /example=thin_wedge\.off/);
+  assert.match(url, /sliverAngle=5/);
+  // The URL in a new page: same parameters, same numbers.
+  const again = await open(url.slice(server.url.length));
+  assert.equal(await waitState(again, ['done', 'error']), 'done');
+  assert.equal(await again.inputValue('#p-sliverAngle'), '5');
+  assert.equal(await again.inputValue('#example'), 'thin_wedge.off');
+  const shown2 = await shownStats(again);
+  for (const k of STAT_KEYS) assert.equal(shown2[k], shown[k], `round trip: ${k}`);
+  await again.context().close();
+  await page.context().close();
+});
+
+test('broken models: error code and message, highlight, then a good model meshes', { skip: skip || (!existsSync(shared) && '../shared/models is absent') }, async () => {
+  const page = await open();
+  for (const name of BROKEN) {
+    const bytes = readFileSync(join(shared, name));
+    const report = pkg.checkSync(bytes);
+    assert.equal(report.valid, false, `${name} is broken`);
+    await page.setInputFiles('input[type=file]', join(shared, name));
+    await page.waitForFunction((n) => document.body.dataset.input === n, name);
+    assert.equal(await state(page), 'error', name);
+    const code = await page.getAttribute('[data-error-code]', 'data-error-code');
+    assert.equal(code, report.error.kind, `${name}: data-error-code`);
+    const text = await page.textContent('[data-error-code]');
+    assert.ok(text.toLowerCase().includes(report.error.message.toLowerCase().slice(1, 40)),
+              `${name}: the message "${report.error.message}" is shown (got "${text}")`);
+    // Where the message names a face, an edge or a point, the view highlights it.
+    const bad = await page.evaluate(() => {
+      const b = window.__wqmeshPage.surface.bad;
+      return { faces: b.positions.length / 9, edge: b.edge.length / 6, points: b.points.length / 3 };
+    });
+    if (/\bface \d+/.test(report.error.message)) assert.ok(bad.faces > 0, `${name}: face highlighted`);
+    if (/edge from vertex/.test(report.error.message)) assert.equal(bad.edge, 1, `${name}: edge highlighted`);
+    assert.equal(await page.isDisabled('[data-action=mesh]'), true, `${name}: nothing to mesh`);
+  }
+  await page.selectOption('#example', 'box.off');
+  await page.waitForFunction(() => document.body.dataset.input === 'box.off');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  assert.equal(await page.locator('[data-error-code]').count(), 0);
+  assert.equal(await page.textContent('[data-stat=tets]'), String(packageResult(model('box.off'), DEFAULTS).stats.tets));
+  await page.context().close();
+});
+
+test('cancel within a second, a second run succeeds; a rho0 change during a run restarts it; no long task', { skip }, async () => {
+  // box.off with a size bound of 0.02: about a million tets, far longer than the test waits.
+  const page = await open('?example=box.off&maxSize=0.02', { longTasks: true });
+  await waitState(page, 'running');
+  const runStart = await page.evaluate(() => window.__wqmeshPage.run.startedAt);
+  await page.waitForFunction(() => /vertices/.test(document.getElementById('progress-text').textContent));
+  await page.waitForTimeout(1500);
+  const progress = await page.textContent('#progress-text');
+  assert.match(progress, /^(initialize|conform|refine|pump|extract): \d+ vertices/, progress);
+  // rho0 changes during the run: the run in progress is cancelled and a new one starts with rho0 = 3.
+  const before = await page.evaluate(() => window.__wqmeshPage.runSeq);
+  await page.fill('#p-rho', '3');
+  await page.dispatchEvent('#p-rho', 'change');
+  assert.equal(await state(page), 'running');
+  const after = await page.evaluate(() => ({ seq: window.__wqmeshPage.runSeq, running: Boolean(window.__wqmeshPage.run) }));
+  assert.equal(after.seq, before + 1, 'a new run started');
+  assert.ok(after.running);
+  assert.match(page.url(), /rho=3/);
+  await page.waitForTimeout(1000);
+  assert.equal(await state(page), 'running');
+  const t0 = Date.now();
+  await page.click('[data-action=cancel]');
+  await waitState(page, 'cancelled', 1000);
+  assert.ok(Date.now() - t0 < 1000, `cancelled after ${Date.now() - t0} ms`);
+  const long = await page.evaluate((t) => window.__longTasks.filter((e) => e.start >= t).map((e) => e.duration), runStart);
+  assert.ok(long.every((d) => d <= 100), `long tasks on the main thread during the run: ${long.join(', ')} ms`);
+  // The next run works: a small model after the cancelled one.
+  await page.fill('#p-maxSize', '0');
+  await page.dispatchEvent('#p-maxSize', 'change');
+  await page.fill('#p-rho', '2.2');
+  await page.dispatchEvent('#p-rho', 'change');
+  await page.click('[data-action=mesh]');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  assert.equal(await page.textContent('[data-stat=tets]'), String(packageResult(model('box.off'), DEFAULTS).stats.tets));
+  await page.context().close();
+});
+
+/** The faces a whole-tet clip must draw, computed here from the mesh: { kept, faces: Set('t,i') }. */
+function expectedCut(result, normal, offset) {
+  const { vertices: V, tets: T } = result;
+  const nt = T.length / 4;
+  const kept = new Uint8Array(nt);
+  let keptCount = 0;
+  for (let t = 0; t < nt; ++t) {
+    let s = 0;
+    for (let k = 0; k < 4; ++k) for (let c = 0; c < 3; ++c) s += V[3 * T[4 * t + k] + c] * normal[c];
+    if (s / 4 <= offset) { kept[t] = 1; ++keptCount; }
+  }
+  const nb = neighbours(T);
+  const faces = new Set();
+  for (let t = 0; t < nt; ++t) {
+    if (!kept[t]) continue;
+    for (let i = 0; i < 4; ++i) if (nb[4 * t + i] < 0 || !kept[nb[4 * t + i]]) faces.add(`${t},${i}`);
+  }
+  return { keptCount, faces };
+}
+
+/** What the page draws: per drawn face, its tet and its three corners (model coordinates). */
+const drawnFaces = (page) => page.evaluate(() => {
+  const p = window.__wqmeshPage;
+  const g = p.viewer.meshObject.geometry;
+  const pos = g.getAttribute('position').array, idx = g.index.array;
+  const o = p.meshInfo.origin;
+  const out = [];
+  for (let f = 0; f < idx.length / 3; ++f) {
+    out.push({ tet: p.viewer.faceTet[f],
+      corners: [0, 1, 2].map((j) => [0, 1, 2].map((k) => pos[3 * idx[3 * f + j] + k] + o[k])) });
+  }
+  return { faces: out, vertexCount: pos.length / 3, drawn: p.lastView.drawnTets, kept: p.lastView.keptTets };
+});
+
+function checkWholeTets(view, result, expected, what) {
+  const { vertices: V, tets: T } = result;
+  assert.equal(view.kept, expected.keptCount, `${what}: kept tets`);
+  assert.equal(view.faces.length, expected.faces.size, `${what}: drawn faces`);
+  const tetsDrawn = new Set();
+  for (const f of view.faces) {
+    tetsDrawn.add(f.tet);
+    // The face is a whole face of its tet (no fragment): find which one.
+    const i = TET_FACES.findIndex((F) => F.every((c, j) => {
+      const v = T[4 * f.tet + c];
+      return [0, 1, 2].every((k) => Math.abs(V[3 * v + k] - f.corners[j][k]) <= 1e-5 * (1 + Math.abs(V[3 * v + k])));
+    }));
+    assert.ok(i >= 0, `${what}: face of tet ${f.tet} is one of its faces`);
+    assert.ok(expected.faces.has(`${f.tet},${i}`), `${what}: face ${i} of tet ${f.tet} should not be drawn`);
+  }
+  assert.equal(view.drawn, tetsDrawn.size, `${what}: drawn tets`);
+  assert.equal(view.vertexCount, 4 * tetsDrawn.size, `${what}: four corners per drawn tet`);
+}
+
+test('clipping plane keeps whole tets; downloads; screenshots at both widths', { skip }, async () => {
+  const query = '?example=bracket.off&maxSize=0.3&axis=y&cut=0.5&bound=20';
+  const page = await open(query);
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  const options = { ...DEFAULTS, maxSize: 0.3 };
+  const result = packageResult(model('bracket.off'), options);
+  assertSameNumbers(await shownStats(page), result.stats, 'bracket.off');
+  const box = await page.evaluate(() => window.__wqmeshPage.meshInfo.box);
+  const at = (cut) => box.lo[1] + cut * (box.hi[1] - box.lo[1]);
+  const first = await drawnFaces(page);
+  checkWholeTets(first, result, expectedCut(result, [0, 1, 0], at(0.5)), 'cut 0.5');
+  // Move the plane: a new picture, different tets, still whole ones.
+  const seq = await page.evaluate(() => Number(document.body.dataset.viewSeq));
+  await page.$eval('#v-cut', (e) => { e.value = '0.3'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.waitForFunction((s) => Number(document.body.dataset.viewSeq) > s && window.__wqmeshPage.lastView, seq);
+  await page.waitForFunction(() => !document.querySelector('#drawn').textContent.includes('…'));
+  await page.waitForTimeout(200);
+  const second = await drawnFaces(page);
+  assert.ok(second.kept < first.kept, 'fewer tets kept with the plane moved towards lo');
+  checkWholeTets(second, result, expectedCut(result, [0, 1, 0], at(0.3)), 'cut 0.3');
+  assert.match(page.url(), /cut=0.3/);
+  // Picking: the worst tet from the list shows its numbers.
+  await page.click('#worst button');
+  await page.waitForSelector('#pick dl');
+  assert.match(await page.textContent('#pick'), /smallest dihedral/);
+  // Downloads.
+  for (const [kind, pattern] of [['medit', /^MeshVersionFormatted/], ['vtu', /<VTKFile/], ['stats', /"tets"/]]) {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`[data-download=${kind}]`)]);
+    const text = readFileSync(await dl.path(), 'utf8');
+    assert.match(text, pattern, kind);
+  }
+  const [png] = await Promise.all([page.waitForEvent('download'), page.click('[data-download=png]')]);
+  assert.equal(readFileSync(await png.path()).subarray(1, 4).toString(), 'PNG');
+  // Screenshots: clip on, tets below 20 degrees highlighted, both widths.
+  await page.$eval('#v-cut', (e) => { e.value = '0.5'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: join(shots, 'bracket-1280x800.png') });
+  await page.context().close();
+  const phone = await open(query, { width: 390, height: 844 });
+  assert.equal(await waitState(phone, ['done', 'error']), 'done');
+  await phone.waitForTimeout(300);
+  const overflow = await phone.evaluate(() => ({ scroll: document.documentElement.scrollWidth, client: document.documentElement.clientWidth }));
+  assert.ok(overflow.scroll <= overflow.client, `phone width: ${overflow.scroll} > ${overflow.client}`);
+  await phone.screenshot({ path: join(shots, 'bracket-390x844.png') });
+  await phone.screenshot({ path: join(shots, 'bracket-390x844-full.png'), fullPage: true });
+  await phone.context().close();
+});
+
+test('console free of errors and warnings; no request off 127.0.0.1', { skip }, () => {
+  assert.deepEqual(consoleProblems, []);
+  assert.deepEqual(offHostRequests, []);
+});
