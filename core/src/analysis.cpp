@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "exact.h"
+#include "scaling.h"
 #include "wqmesh/analysis.h"
 
 namespace wqmesh {
@@ -400,7 +401,17 @@ class Analyzer {
 }  // namespace
 
 Analysis analyze(const PLC& plc, const AnalysisOptions& options) {
-  return Analyzer(plc, options).run();
+  // Beyond the paper: the analysis runs on the input scaled by 2^-E (exact,
+  // see scaling.h), so that its formulas cannot overflow or underflow, and
+  // reports f(u) and the boxes in the input's units. Inputs that cannot be
+  // represented so are refused (out_of_range).
+  const int E = normalisation_exponent(plc);
+  check_representable(plc, E, options.box_margin);
+  if (E == 0) return Analyzer(plc, options).run();
+  const PLC scaled = scaled_plc(plc, -E);
+  Analysis a = Analyzer(scaled, options).run();
+  scale_analysis(a, E);
+  return a;
 }
 
 }  // namespace wqmesh

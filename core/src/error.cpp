@@ -22,6 +22,7 @@ const char* error_kind_name(InputErrorKind kind) {
     case InputErrorKind::not_orientable: return "not_orientable";
     case InputErrorKind::self_intersection: return "self_intersection";
     case InputErrorKind::zero_volume: return "zero_volume";
+    case InputErrorKind::out_of_range: return "out_of_range";
   }
   return "unknown";
 }

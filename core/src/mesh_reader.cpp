@@ -2,6 +2,7 @@
 // wqmesh: reading tetrahedral meshes (Medit .mesh, TetGen .node/.ele); see
 // wqmesh/mesh_reader.h.
 #include "wqmesh/mesh_reader.h"
+#include "wqmesh/quality.h"
 
 #include <algorithm>
 #include <cctype>
@@ -337,11 +338,9 @@ bool orient_tets_by_majority(TetMesh& mesh) {
   for (const std::array<int, 4>& t : mesh.tets) {
     const Point3 &a = mesh.vertices.at(t[0]), &b = mesh.vertices.at(t[1]), &c = mesh.vertices.at(t[2]),
                  &d = mesh.vertices.at(t[3]);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double z[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-    const double v = u[0] * (w[1] * z[2] - w[2] * z[1]) - u[1] * (w[0] * z[2] - w[2] * z[0]) +
-                     u[2] * (w[0] * z[1] - w[1] * z[0]);
+    // The exact sign: a double determinant overflows at 1e103 and rounds
+    // to the wrong sign on flat tets.
+    const int v = tet_orientation(a, b, c, d);
     if (v < 0)
       ++negative;
     else if (v > 0)

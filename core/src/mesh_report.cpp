@@ -5,35 +5,16 @@
 #include "wqmesh/json.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/output.h"
+#include "scaling.h"
 
 namespace wqmesh {
 
 double plc_volume(const PLC& plc) {
-  // V = 1/3 sum over facets of (a point of F - g) . (area vector of F); the
-  // area vector of a facet is the sum over its loops (holes turn the other
-  // way). Any g gives V (the area vectors of a closed surface sum to zero);
-  // a vertex of the input keeps the terms small when the input lies far from
-  // the origin (coordinates of 1e8 around a unit-sized part).
-  double volume = 0;
-  if (plc.vertices.empty()) return 0;
-  const Point3& g = plc.vertices[0];
-  for (const PlcFacet& f : plc.facets) {
-    const Point3& o = plc.vertices[f.loops[0][0]];
-    for (const auto& loop : f.loops) {
-      double area[3] = {0, 0, 0};
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        const Point3& p = plc.vertices[loop[i]];
-        const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
-        const double a[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
-        const double b[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
-        area[0] += a[1] * b[2] - a[2] * b[1];
-        area[1] += a[2] * b[0] - a[0] * b[2];
-        area[2] += a[0] * b[1] - a[1] * b[0];
-      }
-      volume += ((o[0] - g[0]) * area[0] + (o[1] - g[1]) * area[1] + (o[2] - g[2]) * area[2]) / 6;
-    }
-  }
-  return volume;
+  // Computed scaled (scaling.h): infinite or zero only when the volume is
+  // beyond double range, which analyze refuses (out_of_range).
+  int e = 0;
+  const double v = plc_volume_scaled(plc, e);
+  return std::ldexp(v, e);
 }
 
 std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptions& options, double time_s,

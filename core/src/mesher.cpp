@@ -7,10 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "mesher_state.h"
+#include "scaling.h"
 
 namespace wqmesh {
 
@@ -140,8 +142,10 @@ PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis) {
   return best;
 }
 
-MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
-                           const ProgressCallback& progress) {
+/// WQMESH on a normalised input (see mesh_polyhedron below): coordinates at
+/// most 2 in absolute value.
+static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
+                                  const ProgressCallback& progress) {
   using clock = std::chrono::steady_clock;
   // Runs that cannot fit the vertex limit are refused before meshing, with
   // the reason, instead of refining for minutes towards the limit.
@@ -239,6 +243,46 @@ MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshO
     floor.insert_all(points);
     r.delaunay_floor_s = std::chrono::duration<double>(clock::now() - f0).count();
   }
+  return r;
+}
+
+MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
+                           const ProgressCallback& progress) {
+  // Beyond the paper: the run works on the input scaled by 2^-E (exact; see
+  // scaling.h), so that no formula of the mesher overflows or underflows, and
+  // every output length is scaled back by 2^E (weights by 2^2E, volumes by
+  // 2^3E): the input vertices come out at their exact input coordinates.
+  const int E = normalisation_exponent(plc);
+  MeshResult r;
+  if (E == 0) {
+    r = mesh_normalised(plc, analysis, options, progress);
+  } else {
+    const PLC scaled = scaled_plc(plc, -E);
+    Analysis a = analysis;
+    scale_analysis(a, -E);
+    MeshOptions o = options;
+    o.max_size = std::ldexp(options.max_size, -E);
+    r = mesh_normalised(scaled, a, o, progress);
+    for (Point3& p : r.mesh.vertices)
+      for (double& x : p) x = std::ldexp(x, E);
+    for (double& w : r.mesh.weights) w = std::ldexp(w, 2 * E);
+    for (double& n : r.nearest_neighbour) n = std::ldexp(n, E);
+    for (ProtectingBall& b : r.protecting_balls) {
+      for (double& x : b.center) x = std::ldexp(x, E);
+      b.radius = std::ldexp(b.radius, E);
+    }
+    for (TetQuality& q : r.quality) {
+      q.volume = std::ldexp(q.volume, 3 * E);
+      q.radius = std::ldexp(q.radius, E);
+      q.shortest_edge = std::ldexp(q.shortest_edge, E);
+      q.longest_edge = std::ldexp(q.longest_edge, E);
+      q.inradius = std::ldexp(q.inradius, E);
+    }
+  }
+  // A valid polyhedron always has interior tets once a run is done: none is
+  // a bug (the symptom of a lost inside/outside labelling), not a result.
+  if (r.stopped.empty() && r.mesh.tets.empty())
+    throw std::runtime_error("internal error: the run finished with no tet inside the polyhedron");
   return r;
 }
 

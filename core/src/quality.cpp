@@ -7,6 +7,9 @@
 // accurate for non-degenerate tetrahedra and well-defined (no NaN) otherwise.
 #include "wqmesh/quality.h"
 
+#include "exact.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -19,7 +22,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-Point3 sub(const Point3& p, const Point3& q) { return {{p[0] - q[0], p[1] - q[1], p[2] - q[2]}}; }
 
 double dot(const Point3& u, const Point3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
@@ -56,77 +58,156 @@ Point3 orthocenter_offset(const Point3& e1, const Point3& e2, const Point3& e3, 
   return x;
 }
 
+/// A tetrahedron scaled by a power of two, so that no formula below can
+/// overflow or underflow for finite input (beyond the paper, which assumes
+/// exact reals). The six edge vectors, in the order 01, 02, 03, 12, 13, 23,
+/// are differences of the input doubles (first scaled by 2^-2 when a
+/// coordinate is so large that a difference could overflow), then multiplied
+/// by 2^-k so that their largest component lies in [1, 2). A length of the
+/// scaled tet times 2^k (2^(2k) for areas and weights, 2^(3k) for volumes) is
+/// the input's; angles and ratios need no scaling back. Subnormal differences
+/// (points 1e-310 apart) become normal numbers: products of them no longer
+/// underflow to zero.
+struct ScaledTet {
+  std::array<Point3, 6> edge;  ///< p_j - p_i for the edges 01,02,03,12,13,23, scaled
+  int k = 0;                   ///< the exponent: input length = scaled length * 2^k
+  bool zero = true;            ///< all four points equal
+
+  explicit ScaledTet(const std::array<const Point3*, 4>& p) {
+    static constexpr int kE[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    double big = 0;
+    for (const Point3* q : p)
+      for (double x : *q) big = std::max(big, std::fabs(x));
+    // 2^1021: below it the difference of two coordinates stays below 2^1022.
+    const int pre = big >= std::ldexp(1.0, 1021) ? 2 : 0;
+    double largest = 0;
+    for (int i = 0; i < 6; ++i) {
+      const Point3& a = *p[kE[i][0]];
+      const Point3& b = *p[kE[i][1]];
+      for (int c = 0; c < 3; ++c) {
+        edge[i][c] = std::ldexp(b[c], -pre) - std::ldexp(a[c], -pre);
+        largest = std::max(largest, std::fabs(edge[i][c]));
+      }
+    }
+    if (!(largest > 0) || !std::isfinite(largest)) {  // one point, or not finite
+      zero = largest == 0;
+      k = pre;
+      return;
+    }
+    zero = false;
+    const int m = std::ilogb(largest);
+    for (Point3& e : edge)
+      for (double& x : e) x = std::ldexp(x, -m);
+    k = m + pre;
+  }
+};
+
 }  // namespace
+
+double tet_volume_scaled(const Point3& a, const Point3& b, const Point3& c, const Point3& d, int& exponent) {
+  const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
+  exponent = 3 * s.k;
+  return dot(s.edge[0], cross(s.edge[1], s.edge[2])) / 6.0;
+}
+
+int tet_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return exact::sign([&](auto z) {
+    using NT = decltype(z);
+    NT u[3], v[3], w[3];
+    for (int i = 0; i < 3; ++i) {
+      u[i] = NT(b[i]) - NT(a[i]);
+      v[i] = NT(c[i]) - NT(a[i]);
+      w[i] = NT(d[i]) - NT(a[i]);
+    }
+    return z + u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+           u[2] * (v[0] * w[1] - v[1] * w[0]);
+  });
+}
+
+double tet_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  int e = 0;
+  const double v = tet_volume_scaled(a, b, c, d, e);
+  return std::ldexp(v, e);
+}
 
 TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                        const std::array<double, 4>* w) {
   TetQuality q;
-  const std::array<const Point3*, 4> p{{&a, &b, &c, &d}};
-  const Point3 e1 = sub(b, a), e2 = sub(c, a), e3 = sub(d, a);
-
-  // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
-  const double det = dot(e1, cross(e2, e3));
-  q.volume = det / 6.0;
-  const double abs_volume = std::fabs(q.volume);
-
+  const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
+  const int k = s.k;
+  const Point3 origin{{0, 0, 0}};
+  const Point3 &e1 = s.edge[0], &e2 = s.edge[1], &e3 = s.edge[2];
   // Edges in the order 01, 02, 03, 12, 13, 23; `opposite` is the other pair.
   static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   static constexpr int kOpposite[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+  // The vector from vertex i to vertex j of the scaled tet, from the edge
+  // differences (not from e_j - e_i, which would round twice).
+  auto vec = [&](int i, int j) -> Point3 {
+    if (i == j) return origin;
+    const bool flip = i > j;
+    const int lo = flip ? j : i, hi = flip ? i : j;
+    int idx = 0;
+    for (int t = 0; t < 6; ++t)
+      if (kEdge[t][0] == lo && kEdge[t][1] == hi) idx = t;
+    const Point3& v = s.edge[idx];
+    return flip ? Point3{{-v[0], -v[1], -v[2]}} : v;
+  };
+
+  // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
+  const double det = dot(e1, cross(e2, e3));
+  q.volume = std::ldexp(det / 6.0, 3 * k);
+
   q.shortest_edge = kInf;
   q.longest_edge = 0;
   for (int i = 0; i < 6; ++i) {
-    const double len = norm(sub(*p[kEdge[i][1]], *p[kEdge[i][0]]));
+    const double len = norm(s.edge[i]);
     if (len < q.shortest_edge) q.shortest_edge = len;
     if (len > q.longest_edge) q.longest_edge = len;
   }
-  const double l = q.shortest_edge;
+  const double l = q.shortest_edge;  // scaled
 
-  // Circumradius and orthoradius (section 3). A zero volume has no (finite)
-  // circumsphere: the radius is then +infinity.
-  double circumradius = kInf;
-  q.radius = kInf;
+  // Circumradius and orthoradius (section 3), scaled. A zero volume has no
+  // (finite) circumsphere: the radius is then +infinity.
+  double circumradius = kInf, radius = kInf;
   if (det != 0) {
     const double r1 = dot(e1, e1), r2 = dot(e2, e2), r3 = dot(e3, e3);
     circumradius = norm(orthocenter_offset(e1, e2, e3, det, r1, r2, r3));
-    q.radius = circumradius;
+    radius = circumradius;
     if (w != nullptr) {
-      const std::array<double, 4>& W = *w;
+      // Weights are squared radii: scaled by 2^(-2k).
+      std::array<double, 4> W;
+      for (int i = 0; i < 4; ++i) W[i] = std::ldexp((*w)[i], -2 * k);
       const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0],
                                           r3 - W[3] + W[0]);
       // Z^2 = |z - p_0|^2 - W_0, the weight of the orthosphere; may be < 0.
       const double z2 = dot(x, x) - W[0];
-      q.radius = z2 > 0 ? std::sqrt(z2) : 0.0;
+      radius = z2 > 0 ? std::sqrt(z2) : 0.0;
     }
   }
 
-  // rho = R / L and sigma = vol / L^3 (section 3). A zero shortest edge gives
-  // rho = +infinity and sigma = 0.
-  q.radius_edge = l > 0 ? q.radius / l : kInf;
-  q.normalized_volume = l > 0 ? q.volume / (l * l * l) : 0.0;
+  // rho = R / L and sigma = vol / L^3 (section 3), both scale-free. A zero
+  // shortest edge gives rho = +infinity and sigma = 0.
+  q.radius_edge = l > 0 ? radius / l : kInf;
+  q.normalized_volume = l > 0 ? (det / 6.0) / (l * l * l) : 0.0;
 
   // Faces opposite vertex 0, 1, 2, 3, each with its corners in this order.
   static constexpr int kFace[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   double area = 0;
   q.min_face_angle_deg = 180;
   for (int f = 0; f < 4; ++f) {
-    const Point3& u = *p[kFace[f][0]];
-    const Point3& v = *p[kFace[f][1]];
-    const Point3& t = *p[kFace[f][2]];
-    area += 0.5 * norm(cross(sub(v, u), sub(t, u)));
-    for (int k = 0; k < 3; ++k) {
-      const Point3& apex = *p[kFace[f][k]];
-      const Point3& s1 = *p[kFace[f][(k + 1) % 3]];
-      const Point3& s2 = *p[kFace[f][(k + 2) % 3]];
-      const double angle = angle_deg(sub(s1, apex), sub(s2, apex));
-      q.face_angle_deg[3 * f + k] = angle;
+    area += 0.5 * norm(cross(vec(kFace[f][0], kFace[f][1]), vec(kFace[f][0], kFace[f][2])));
+    for (int j = 0; j < 3; ++j) {
+      const int apex = kFace[f][j];
+      const double angle = angle_deg(vec(apex, kFace[f][(j + 1) % 3]), vec(apex, kFace[f][(j + 2) % 3]));
+      q.face_angle_deg[3 * f + j] = angle;
       if (angle < q.min_face_angle_deg) q.min_face_angle_deg = angle;
     }
   }
 
   // Inradius r = 3 |vol| / (total face area); aspect ratio = circumradius / r
-  // (unweighted), +infinity when r = 0.
-  q.inradius = area > 0 ? 3.0 * abs_volume / area : 0.0;
-  q.aspect_ratio = q.inradius > 0 ? circumradius / q.inradius : kInf;
+  // (unweighted), +infinity when r = 0. Both in the scaled tet.
+  const double inradius = area > 0 ? 3.0 * std::fabs(det / 6.0) / area : 0.0;
+  q.aspect_ratio = inradius > 0 ? circumradius / inradius : kInf;
 
   // Dihedral angle at edge ij: the angle between the projections of p_k - p_i
   // and p_l - p_i on the plane orthogonal to e = p_j - p_i, i.e. between
@@ -135,15 +216,21 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   q.min_dihedral_deg = 180;
   q.max_dihedral_deg = 0;
   for (int i = 0; i < 6; ++i) {
-    const Point3& pi = *p[kEdge[i][0]];
-    const Point3 e = sub(*p[kEdge[i][1]], pi);
-    const Point3 nk = cross(e, sub(*p[kOpposite[i][0]], pi));
-    const Point3 nl = cross(e, sub(*p[kOpposite[i][1]], pi));
+    const int pi = kEdge[i][0];
+    const Point3& e = s.edge[i];
+    const Point3 nk = cross(e, vec(pi, kOpposite[i][0]));
+    const Point3 nl = cross(e, vec(pi, kOpposite[i][1]));
     const double angle = angle_deg(nk, nl);
     q.dihedral_deg[i] = angle;
     if (angle < q.min_dihedral_deg) q.min_dihedral_deg = angle;
     if (angle > q.max_dihedral_deg) q.max_dihedral_deg = angle;
   }
+
+  // Back to the input's units: lengths times 2^k (the volume above, 2^3k).
+  q.shortest_edge = std::ldexp(q.shortest_edge, k);
+  q.longest_edge = std::ldexp(q.longest_edge, k);
+  q.radius = std::ldexp(radius, k);
+  q.inradius = std::ldexp(inradius, k);
   return q;
 }
 
@@ -180,7 +267,17 @@ MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality
   s.tets = mesh.tets.size();
   for (const TetQuality& q : quality) {
     s.volume += q.volume;
-    if (!(q.volume > 0)) ++s.inverted;
+    // Inverted: the exact sign of the volume, decided without rounding when
+    // sigma (scale-free, computed scaled) is too small to be sure of: a flat
+    // tet of the mesh (four nearly coplanar points next to a sharp vertex,
+    // sigma 1e-17) is positive in exact arithmetic, and a tet whose volume
+    // underflows in the input's units is not inverted either.
+    if (!(q.normalized_volume > 1e-9)) {
+      const auto& t = mesh.tets[&q - quality.data()];
+      if (tet_orientation(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]],
+                          mesh.vertices[t[3]]) <= 0)
+        ++s.inverted;
+    }
     if (q.min_dihedral_deg < s.min_dihedral_deg) s.min_dihedral_deg = q.min_dihedral_deg;
     if (q.max_dihedral_deg > s.max_dihedral_deg) s.max_dihedral_deg = q.max_dihedral_deg;
     if (q.min_face_angle_deg < s.min_face_angle_deg) s.min_face_angle_deg = q.min_face_angle_deg;

@@ -365,6 +365,7 @@ TEST(Quality, MeshQualityUsesWeightsAndChecksSizes) {
 TetQuality fake(double rho, double min_dihedral, double volume = 1) {
   TetQuality q;
   q.volume = volume;
+  q.normalized_volume = volume;  // the same sign, as tet_quality gives
   q.radius_edge = rho;
   q.min_dihedral_deg = min_dihedral;
   q.max_dihedral_deg = 100;
@@ -467,6 +468,86 @@ TEST(Quality, StatsOnSmallMeshOfKnownTets) {
   for (std::size_t c : s.min_face_angle_histogram) faces += c;
   EXPECT_EQ(faces, 4u);
   EXPECT_NEAR(s.max_dihedral_deg, 180, 0.5);
+}
+
+// Scale safety (beyond the paper): a tet and the same tet scaled by 10^k or
+// 2^k, for every k where its coordinates stay finite, give the same angles,
+// R/l, sigma and aspect ratio, and lengths and volumes scaled by s and s^3
+// wherever those are doubles. Before the scaled evaluation, 1e60 gave 90
+// degrees for a dihedral of 19.47 (|u x v|^2 overflowed) and 1e-120 gave
+// radius 0.
+TEST(TetQuality, ScaleFreeMeasuresAreTheSameAtEveryScale) {
+  const Point3 a{{0, 0, 0}}, b{{1, 0, 0}}, c{{0.3, 0.9, 0}}, d{{0.2, 0.4, 0.7}};
+  const std::array<double, 4> w{{0.01, 0.02, 0.0, 0.03}};
+  const TetQuality q0 = tet_quality(a, b, c, d);
+  const TetQuality w0 = tet_quality(a, b, c, d, &w);
+  auto close = [](double x, double y) { return std::fabs(x - y) <= 1e-12 * std::max(std::fabs(y), 1e-300); };
+  for (int k = -320; k <= 307; k += 7) {
+    for (bool binary : {false, true}) {
+      const double s = binary ? std::ldexp(1.0, 3 * k) : std::pow(10.0, k);
+      if (!(s > 0) || !std::isfinite(s)) continue;
+      auto S = [&](const Point3& p) { return Point3{{p[0] * s, p[1] * s, p[2] * s}}; };
+      const std::array<double, 4> ws{{w[0] * s * s, w[1] * s * s, w[2] * s * s, w[3] * s * s}};
+      const TetQuality q = tet_quality(S(a), S(b), S(c), S(d));
+      SCOPED_TRACE("scale " + std::to_string(s));
+      expect_well_defined(q);
+      if (s < 1e-300) continue;  // 0.3 s, 0.9 s ... are subnormal: not the same tet
+      EXPECT_TRUE(close(q.min_dihedral_deg, q0.min_dihedral_deg)) << q.min_dihedral_deg;
+      EXPECT_TRUE(close(q.max_dihedral_deg, q0.max_dihedral_deg)) << q.max_dihedral_deg;
+      EXPECT_TRUE(close(q.min_face_angle_deg, q0.min_face_angle_deg));
+      EXPECT_TRUE(close(q.radius_edge, q0.radius_edge)) << q.radius_edge;
+      EXPECT_TRUE(close(q.normalized_volume, q0.normalized_volume));
+      EXPECT_TRUE(close(q.aspect_ratio, q0.aspect_ratio));
+      EXPECT_TRUE(close(q.radius, q0.radius * s));
+      EXPECT_TRUE(close(q.shortest_edge, q0.shortest_edge * s));
+      EXPECT_TRUE(close(q.inradius, q0.inradius * s));
+      const double v = q0.volume * s * s * s;
+      if (std::fabs(v) > 1e-290 && std::isfinite(v)) EXPECT_TRUE(close(q.volume, v)) << q.volume << " vs " << v;
+      EXPECT_EQ(tet_orientation(S(a), S(b), S(c), S(d)), 1);
+      // Weights scale with s^2: the orthoradius with s, while s^2 is a double.
+      if (s * s > 1e-300 && std::isfinite(s * s)) {
+        const TetQuality qw = tet_quality(S(a), S(b), S(c), S(d), &ws);
+        EXPECT_TRUE(close(qw.radius, w0.radius * s)) << qw.radius << " vs " << w0.radius * s;
+        EXPECT_TRUE(close(qw.radius_edge, w0.radius_edge));
+      }
+    }
+  }
+}
+
+// Corners near the largest double: coordinates of 1e308 and -1e308 (their
+// differences overflow) still give the unit tet's angles.
+TEST(TetQuality, CornersAtTheLargestDoublesGiveTheRightAngles) {
+  const double s = 1e308;
+  const TetQuality q = tet_quality({{-s, -s, -s}}, {{s, -s, -s}}, {{-s, s, -s}}, {{-s, -s, s}});
+  const TetQuality q0 = tet_quality({{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}});
+  EXPECT_NEAR(q.min_dihedral_deg, q0.min_dihedral_deg, 1e-12);
+  EXPECT_NEAR(q.radius_edge, q0.radius_edge, 1e-12);
+  EXPECT_EQ(q.volume, kInf);  // (2e308)^3 / 6 is beyond double range
+  EXPECT_EQ(q.shortest_edge, kInf);  // 2e308: beyond double range too
+  const TetQuality h = tet_quality({{-s / 2, -s / 2, -s / 2}}, {{s / 2, -s / 2, -s / 2}}, {{-s / 2, s / 2, -s / 2}},
+                                   {{-s / 2, -s / 2, s / 2}});
+  EXPECT_NEAR(h.shortest_edge / s, q0.shortest_edge, 1e-12);
+  EXPECT_NEAR(h.radius / s, q0.radius, 1e-12);
+  EXPECT_EQ(tet_orientation({{-s, -s, -s}}, {{s, -s, -s}}, {{-s, s, -s}}, {{-s, -s, s}}), 1);
+}
+
+// Points that differ only by subnormal amounts: the measures are those of
+// the tet scaled up (no product of subnormals underflows), and the sign of a
+// volume too small for doubles is exact.
+TEST(TetQuality, SubnormalTetsAreMeasuredLikeTheirScaledCopies) {
+  const double t = 1e-310;
+  const TetQuality q = tet_quality({{0, 0, 0}}, {{t, 0, 0}}, {{0, t, 0}}, {{0, 0, t}});
+  const TetQuality q0 = tet_quality({{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}});
+  EXPECT_NEAR(q.min_dihedral_deg, q0.min_dihedral_deg, 1e-9);
+  EXPECT_NEAR(q.radius_edge, q0.radius_edge, 1e-9);
+  EXPECT_EQ(q.volume, 0);  // 1.7e-931: underflows in the input's units
+  EXPECT_GT(q.normalized_volume, 0);
+  EXPECT_EQ(tet_orientation({{0, 0, 0}}, {{t, 0, 0}}, {{0, t, 0}}, {{0, 0, t}}), 1);
+  TetMesh m;
+  m.vertices = {{{0, 0, 0}}, {{t, 0, 0}}, {{0, t, 0}}, {{0, 0, t}}};
+  m.tets = {{{0, 1, 2, 3}}, {{0, 2, 1, 3}}};
+  const MeshStats st = mesh_stats(m, mesh_quality(m));
+  EXPECT_EQ(st.inverted, 1u);  // the second, by its exact sign
 }
 
 }  // namespace

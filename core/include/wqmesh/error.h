@@ -27,6 +27,8 @@ enum class InputErrorKind {
   not_orientable,     ///< no consistent orientation exists
   self_intersection,  ///< two faces cross or overlap (exact predicates)
   zero_volume,        ///< the enclosed volume is zero
+  out_of_range,       ///< coordinates, extent, bounding box or volume beyond
+                      ///< what double precision holds once scaled (scaling.h)
 };
 
 /// The stable name of an error kind, e.g. "open_boundary".

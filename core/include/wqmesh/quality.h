@@ -39,15 +39,36 @@ struct TetQuality {
 };
 
 /// Measures one tetrahedron. `w` may be null (unweighted). Plain double
-/// arithmetic: these are measurements, not decisions.
+/// arithmetic: these are measurements, not decisions. Scale-safe: the tet is
+/// measured scaled by a power of two (see ScaledTet in quality.cpp), so no
+/// intermediate overflows or underflows for any finite input; only a result
+/// that itself cannot be represented in the input's units (the volume of a
+/// tet 1e200 wide, or 1e-120 wide) becomes infinite or zero. Angles, R/l,
+/// sigma and the aspect ratio are computed scale-free and stay exact to
+/// rounding at every scale.
 TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                        const std::array<double, 4>* w = nullptr);
+
+/// The signed volume of a tet (> 0 when positively oriented) as a scaled
+/// value v and an `exponent`: the volume is v * 2^exponent, |v| < 2 (the
+/// longest edge component is scaled into [1, 2)), so its sign is right and
+/// it can be compared even where the volume itself is not a double. Plain
+/// double arithmetic.
+double tet_volume_scaled(const Point3& a, const Point3& b, const Point3& c, const Point3& d, int& exponent);
+
+/// The exact sign (+1, 0, -1) of the signed volume of a tet (CGAL's interval
+/// filter, then MP_Float: the same on every platform).
+int tet_orientation(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+/// The signed volume of a tet, computed scaled (infinite or zero only when
+/// the volume itself is beyond double range).
+double tet_volume(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
 /// Statistics of a whole mesh.
 struct MeshStats {
   std::size_t vertices = 0, tets = 0;
   double volume = 0;  ///< sum of signed tet volumes
-  std::size_t inverted = 0;  ///< tets with volume <= 0
+  std::size_t inverted = 0;  ///< tets with volume <= 0 (exact sign, tet_orientation)
   double min_dihedral_deg = 180, max_dihedral_deg = 0;
   double min_face_angle_deg = 180;
   double max_radius_edge = 0;
@@ -79,8 +100,10 @@ std::size_t histogram_bin(double angle_deg, std::size_t bins);
 /// number of vertices, std::out_of_range on a bad vertex index.
 std::vector<TetQuality> mesh_quality(const TetMesh& mesh);
 
-/// Statistics over per-tet qualities (those of mesh_quality(mesh)). Throws
-/// std::invalid_argument if quality.size() != mesh.tets.size().
+/// Statistics over per-tet qualities (those of mesh_quality(mesh)). A tet
+/// counts as inverted by the exact sign of its volume (tet_orientation on
+/// mesh's points) unless its sigma exceeds 1e-9, where the rounded sign is
+/// sure. Throws std::invalid_argument if quality.size() != mesh.tets.size().
 MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality);
 
 }  // namespace wqmesh
