@@ -1,0 +1,377 @@
+// wqmesh: the package's async API (wasm/index.mjs: check, mesh and the writers
+// in a worker_threads worker) and its Node command line (wasm/cli.mjs):
+// - the option table: the exported table is the module's; the native command
+//   line and the module accept and refuse the same values (min, max, beyond);
+// - the mesher's invariants through the package on several models
+//   (conforming, positively oriented, the input volume), and the same counts
+//   as the native build within 5% (the tolerance of mesh.test.mjs);
+// - every broken model of ../shared/models rejected with the native kind as
+//   its `code`; empty, garbage, a 0-byte file, a path string, null, a
+//   misspelt option: each a clear error;
+// - abort in the middle of a long run, in each phase: an AbortError within
+//   100 ms of the abort, and the next call succeeds; progress never goes
+//   down and the phases come in order;
+// - 100 calls in a row in one process: the module's live C++ bytes and its
+//   heap do not grow after the first call (the process RSS is reported);
+// - the writers: the same VTU arrays on every run, TetGen files with .edge
+//   that TetGen itself reads without a missing connection (when installed);
+// - the Node command line: the native exit codes and stats keys, Ctrl-C.
+// ../shared/models is optional (its tests skip), except under CI.
+// Run: node --test tests/node/package-api.test.mjs
+// SPDX-License-Identifier: GPL-3.0-or-later
+import assert from 'node:assert/strict';
+import { spawn, spawnSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { readFile } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { after, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import { WqmeshError, check, defaultOptions, loadWqmesh, mesh, meshSync, options, ready, writeMedit, writeTetgen,
+         writeVtu } from '../../wasm/index.mjs';
+
+const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
+const cli = join(root, 'build/native/bin/wqmesh');
+const nodeCli = join(root, 'wasm/cli.mjs');
+const shared = join(root, '../shared/models');
+if (!existsSync(shared) && process.env.CI) throw new Error(`${shared} is missing (CI is set)`);
+const skipShared = !existsSync(shared) && '../shared/models is absent';
+const skipNative = !existsSync(cli) && 'the native build is missing';
+const work = mkdtempSync(join(tmpdir(), 'wqmesh-package-api-'));
+after(() => rmSync(work, { recursive: true, force: true }));
+
+const example = (name) => readFileSync(join(root, 'examples/models', name));
+const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract'];
+
+function signedVolume(v, t, name) {
+  let volume = 0;
+  for (let i = 0; i < t.length; i += 4) {
+    const p = [0, 1, 2, 3].map((k) => [v[3 * t[i + k]], v[3 * t[i + k] + 1], v[3 * t[i + k] + 2]]);
+    const a = [0, 1, 2].map((c) => p[1][c] - p[0][c]);
+    const b = [0, 1, 2].map((c) => p[2][c] - p[0][c]);
+    const d = [0, 1, 2].map((c) => p[3][c] - p[0][c]);
+    const o = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
+    assert.ok(o > 0, `${name}: tet ${i / 4} is not positively oriented`);
+    volume += o / 6;
+  }
+  return volume;
+}
+
+function native(args) {
+  return spawnSync(cli, args, { encoding: 'utf8' });
+}
+
+// ---- The option table --------------------------------------------------------
+
+test('the exported option table is the module\'s and gives the defaults', async () => {
+  const w = await loadWqmesh();
+  assert.ok(options.length >= 7);
+  for (const o of options) {
+    assert.equal(typeof o.doc, 'string');
+    assert.equal(defaultOptions[o.name], o.default);
+    if (o.type !== 'boolean') assert.ok(o.min <= o.default && o.default <= o.max, `${o.name}: default in range`);
+  }
+  // The stats echo the options the core ran with: the table's defaults are the core's.
+  const s = w.mesh(example('box.off')).stats;
+  assert.equal(s.options.rho0, defaultOptions.rho);
+  assert.equal(s.options.theta_deg, defaultOptions.sliverAngle);
+  assert.equal(s.options.pump, defaultOptions.pump);
+  assert.equal(s.options.max_vertices, defaultOptions.maxVertices);
+  assert.equal(s.options.max_size, defaultOptions.maxSize);
+  assert.equal(s.options.box_margin, defaultOptions.boxMargin);
+});
+
+test('the native command line and the module accept and refuse the same option values', { skip: skipNative }, async () => {
+  const box = join(root, 'examples/models/box.off');
+  const bytes = example('box.off');
+  const out = join(work, 'range.mesh');
+  for (const o of options.filter((x) => x.flag && x.type !== 'boolean')) {
+    const step = o.type === 'integer' ? 1 : Math.max(Math.abs(o.min), 1) * 1e-3;
+    const cases = [[o.min, true], [o.max, true], [o.min - step, false], [o.max * 2 + 1, false]];
+    if (o.type === 'integer') cases.push([o.min + 0.5, false]);
+    for (const [value, ok] of cases) {
+      // A vertex limit of 8 stops every run before meshing (exit code 3, a
+      // resolved result): what is tested is only whether the value is taken.
+      const limit = o.name === 'maxVertices' ? {} : { maxVertices: 8 };
+      const args = ['mesh', box, '-o', out, '--quiet', ...(o.name === 'maxVertices' ? [] : ['--max-vertices', '8']),
+                    o.flag, String(value)];
+      if (o.name === 'maxVertices' && value === o.max) continue;  // would mesh the box fully: covered elsewhere
+      const n = native(args);
+      let wasm;
+      try {
+        await mesh(bytes, { ...limit, [o.name]: value });
+        wasm = true;
+      } catch (e) {
+        assert.ok(e instanceof WqmeshError, `${o.name} = ${value}: ${e}`);
+        assert.equal(e.code, 'options');
+        assert.match(e.message, new RegExp(o.name));
+        wasm = false;
+      }
+      assert.equal(n.status !== 1, ok, `native ${o.flag} ${value}: exit ${n.status} ${n.stderr.split('\n')[0]}`);
+      assert.equal(wasm, ok, `wasm ${o.name} = ${value}`);
+    }
+  }
+  // maxSize 0 (no bound) is taken by both (it was refused by the command line).
+  assert.equal(native(['mesh', box, '-o', out, '--quiet', '--max-size', '0']).status, 0);
+  assert.equal((await mesh(bytes, { maxSize: 0 })).stats.conforming, true);
+});
+
+// ---- Invariants through the package vs native --------------------------------
+
+const invariantModels = [
+  ...['box.off', 'spike.off', 'thin_wedge.off', 'bracket.off'].map((n) => join(root, 'examples/models', n)),
+  ...(skipShared ? [] : ['wedge.off', 'schonhardt.off', 'extrusion.off', 'example012.stl'].map((n) => join(shared, n))),
+];
+for (const model of invariantModels) {
+  const name = model.split('/').pop();
+  test(`mesh() through the package: ${name} conforms, keeps its volume and agrees with native`, async () => {
+    const fractions = [];
+    const phases = [];
+    const r = await mesh(await readFile(model), {}, { onProgress: (p) => { fractions.push(p.fraction); phases.push(p.phase); } });
+    const s = r.stats;
+    assert.equal(s.conforming, true);
+    assert.equal(s.stopped, '');
+    assert.equal(r.vertices.length, 3 * s.vertices);
+    assert.equal(r.weights.length, s.vertices);
+    assert.equal(r.tets.length, 4 * s.tets);
+    for (const k of ['tetClass', 'minDihedral', 'radiusEdge']) assert.equal(r[k].length, s.tets, k);
+    assert.equal(r.boundary.length / 3, r.boundaryFacet.length);
+    assert.equal(r.protectingBalls.length, 4 * s.protecting_balls.length);
+    assert.equal(r.protectingBallIsVertex.length, s.protecting_balls.length);
+    const volume = signedVolume(r.vertices, r.tets, name);
+    assert.ok(Math.abs(volume - s.volume_input) <= 1e-9 * s.volume_input, `volume ${volume} vs ${s.volume_input}`);
+    assert.equal(Array.from(r.tetClass).filter((c) => c === 3).length, s.violations);
+    for (let i = 1; i < fractions.length; ++i) {
+      assert.ok(fractions[i] >= fractions[i - 1], `fraction went down: ${fractions[i - 1]} -> ${fractions[i]}`);
+      assert.ok(PHASES.indexOf(phases[i]) >= PHASES.indexOf(phases[i - 1]), `phase ${phases[i - 1]} -> ${phases[i]}`);
+    }
+    assert.ok(fractions.length >= 1 && fractions.every((f) => f >= 0 && f <= 1));
+    if (!skipNative) {
+      const stats = join(work, `${name}.json`);
+      const n = native(['mesh', model, '-o', join(work, `${name}.mesh`), '--stats', stats, '--quiet']);
+      assert.equal(n.status, 0, n.stderr);
+      const ns = JSON.parse(readFileSync(stats, 'utf8'));
+      for (const k of Object.keys(ns)) assert.ok(k in s, `native stats key ${k} in the package's stats`);
+      assert.ok(Math.abs(ns.vertices - s.vertices) <= 0.05 * ns.vertices, `vertices ${s.vertices} vs native ${ns.vertices}`);
+      assert.ok(Math.abs(ns.tets - s.tets) <= 0.05 * ns.tets, `tets ${s.tets} vs native ${ns.tets}`);
+      assert.equal(s.input_points, ns.input_points);
+      assert.equal(s.sharp_elements, ns.sharp_elements);
+    }
+  });
+}
+
+// ---- Bad input ----------------------------------------------------------------
+
+const BROKEN = ['cubes.off', 'cube-ouvert.off', 'self_intersecting.off', 'issue1580-zero-area-triangle.stl',
+                'bad-stl-pcbvicebar.stl'];
+test('every broken shared model is rejected with the native error kind as its code', { skip: skipShared || skipNative }, async () => {
+  for (const name of BROKEN) {
+    const path = join(shared, name);
+    const n = native(['check', path, '--compact']);
+    assert.equal(n.status, 2, `${name}: native exit code`);
+    const kind = JSON.parse(n.stdout).error.kind;
+    await assert.rejects(mesh(await readFile(path)), (e) => {
+      assert.ok(e instanceof WqmeshError, `${name}: ${e}`);
+      assert.equal(e.code, kind, name);
+      assert.ok(e.message.length > kind.length + 20, `${name}: a message naming where: ${e.message}`);
+      return true;
+    });
+    const report = await check(await readFile(path));
+    assert.equal(report.valid, false);
+    assert.equal(report.error.kind, kind);
+  }
+});
+
+test('empty, garbage, 0-byte file, path, null and misspelt option: clear errors', async () => {
+  await assert.rejects(mesh(new Uint8Array(0)), (e) => e instanceof WqmeshError && e.code === 'empty');
+  const garbage = new Uint8Array(300).map((_, i) => (i * 131 + 7) % 256);
+  await assert.rejects(mesh(garbage), (e) => e instanceof WqmeshError && !['internal', 'options'].includes(e.code) &&
+                                           /wqmesh: \w+: .{10,}/.test(e.message));
+  const zero = join(work, 'zero.off');
+  writeFileSync(zero, '');
+  await assert.rejects(mesh(await readFile(zero)), (e) => e.code === 'empty');
+  for (const path of ['model.off', '/tmp/x.stl', 'C:\\models\\part.off', './a']) {
+    await assert.rejects(mesh(path), (e) => e instanceof TypeError && /looks like a file name/.test(e.message), path);
+    await assert.rejects(check(path), TypeError);
+  }
+  for (const bad of [null, undefined, 42, {}, [1, 2, 3], true]) {
+    await assert.rejects(mesh(bad), (e) => e instanceof TypeError && /expected the file's bytes/.test(e.message), String(bad));
+  }
+  const box = example('box.off');
+  await assert.rejects(mesh(box, { rhoo: 5 }), (e) => e instanceof WqmeshError && e.code === 'options' &&
+                                                      /'rhoo'/.test(e.message) && /rho, sliverAngle/.test(e.message));
+  await assert.rejects(mesh(box, { rho: '3' }), (e) => e.code === 'options' && /rho must be a number/.test(e.message));
+  await assert.rejects(mesh(box, { pump: 1 }), (e) => e.code === 'options' && /pump must be true or false/.test(e.message));
+  await assert.rejects(mesh(box, { signal: new AbortController().signal }), (e) => e.code === 'options' && /third argument/.test(e.message));
+  await assert.rejects(check(box, { rho: 3 }), (e) => e.code === 'options' && /boxMargin/.test(e.message));
+  await assert.rejects(mesh(box, 5), TypeError);
+  await assert.rejects(mesh(box, {}, { signal: 5 }), TypeError);
+  // Text input is read by content.
+  assert.equal((await check(box.toString('utf8'))).valid, true);
+  // The sync forms need the module in this thread first.
+  await ready();
+  assert.throws(() => meshSync('a/b.off'), TypeError);
+  assert.throws(() => meshSync(box, { rhoo: 1 }), (e) => e.code === 'options');
+});
+
+// ---- Abort and progress --------------------------------------------------------
+
+// A run of seconds: the box with a small size bound.
+const LONG = { maxSize: 0.02, maxVertices: 2000000 };
+
+for (const phase of ['initialize', 'conform', 'refine']) {
+  test(`an abort during ${phase} rejects within 100 ms and the next call succeeds`, async () => {
+    const controller = new AbortController();
+    let abortedAt = 0;
+    let seen = '';
+    const box = example('box.off');
+    await assert.rejects(mesh(box, LONG, {
+      signal: controller.signal,
+      onProgress: (p) => {
+        if (!abortedAt && p.phase === phase && (phase !== 'refine' || p.vertices > 3000)) {
+          seen = p.phase;
+          abortedAt = performance.now();
+          controller.abort();
+        }
+      },
+    }), (e) => {
+      const ms = performance.now() - abortedAt;
+      assert.equal(e.name, 'AbortError');
+      assert.ok(e instanceof DOMException);
+      assert.ok(ms < 100, `rejected ${ms} ms after the abort`);
+      return true;
+    });
+    assert.equal(seen, phase);
+    const r = await mesh(box);
+    assert.equal(r.stats.conforming, true);
+  });
+}
+
+test('an already aborted signal rejects at once; abort also stops check and the writers', async () => {
+  const signal = AbortSignal.abort();
+  await assert.rejects(mesh(example('box.off'), {}, { signal }), { name: 'AbortError' });
+  await assert.rejects(check(example('box.off'), {}, { signal }), { name: 'AbortError' });
+  const r = await mesh(example('box.off'));
+  await assert.rejects(writeVtu(r, { signal }), { name: 'AbortError' });
+});
+
+test('100 calls in a row: no growth of the module\'s memory', async () => {
+  const box = example('box.off');
+  const live = [];
+  const heap = [];
+  const rss = [];
+  for (let i = 0; i < 100; ++i) {
+    const r = await mesh(box);
+    assert.equal(r.stats.conforming, true);
+    live.push(r.memory.liveBytes);
+    heap.push(r.memory.heapBytes);
+    rss.push(process.memoryUsage().rss);
+  }
+  // The same worker runs them all (it is reused); after the first call the
+  // C++ allocations held between calls and the wasm memory stay put.
+  assert.ok(live[99] <= live[1], `live C++ bytes ${live[1]} -> ${live[99]}`);
+  assert.equal(heap[99], heap[1], `wasm heap ${heap[1]} -> ${heap[99]}`);
+  const mb = (x) => (x / 2 ** 20).toFixed(1);
+  test.diagnostic?.(`100 calls: live C++ bytes ${live[0]} / ${live[1]} / ${live[99]}, wasm heap ${mb(heap[1])} MB / ` +
+                    `${mb(heap[99])} MB, process RSS ${mb(rss[1])} MB -> ${mb(rss[99])} MB`);
+  console.log(`# memory over 100 calls: live C++ bytes after call 1, 2, 100: ${live[0]}, ${live[1]}, ${live[99]}; ` +
+              `wasm heap ${mb(heap[1])} -> ${mb(heap[99])} MB; process RSS ${mb(rss[1])} -> ${mb(rss[99])} MB`);
+});
+
+// ---- Writers ------------------------------------------------------------------
+
+function vtuArrays(text) {
+  return [...text.matchAll(/<DataArray[^>]*Name="([^"]+)"/g)].map((m) => m[1]);
+}
+
+test('the VTU has the same arrays on every run, and TetGen gets .edge', async () => {
+  const spike = example('spike.off');
+  const pumped = await mesh(spike);
+  const plain = await mesh(spike, { pump: false });
+  const a = vtuArrays(await writeVtu(pumped));
+  const b = vtuArrays(await writeVtu(plain));
+  assert.deepEqual(a, b);
+  for (const name of ['weight', 'min_dihedral', 'radius_edge', 'radius_ratio_R_over_r', 'volume', 'class'])
+    assert.ok(a.includes(name), `array ${name}`);
+  assert.ok(!a.includes('aspect_ratio'), 'no array named like VTK\'s normalised measure');
+  const medit = await writeMedit(pumped);
+  assert.match(medit, new RegExp(`\\nTetrahedra\\n${pumped.stats.tets}\\n`));
+  const bytes = await writeMedit(pumped, { bytes: true });
+  assert.ok(bytes instanceof Uint8Array);
+  assert.equal(new TextDecoder().decode(bytes), medit);
+  const t = await writeTetgen(pumped);
+  const count = (s) => Number(s.split(/\s+/)[0]);
+  assert.equal(count(t.node), pumped.stats.vertices);
+  assert.equal(count(t.ele), pumped.stats.tets);
+  assert.equal(count(t.face), pumped.boundary.length / 3);
+  assert.ok(count(t.edge) >= 15, 'spike has at least its 15 input edges');
+  // Chains are oriented: a subsegment that ends inside an input edge is followed by one that begins there.
+  await assert.rejects(writeVtu({ ...pumped, tets: new Uint32Array([0, 1, 2, 999999]), tetClass: new Uint8Array(1) }),
+                       (e) => e instanceof TypeError && /not a vertex index/.test(e.message));
+  await assert.rejects(writeVtu(null), TypeError);
+  const tetgen = spawnSync('tetgen', ['-h'], { encoding: 'utf8' });
+  if (tetgen.error) return;  // TetGen is optional (apt-get install tetgen)
+  const base = join(work, 'spike_tg');
+  for (const ext of ['node', 'ele', 'face', 'edge']) writeFileSync(`${base}.${ext}`, t[ext]);
+  const r = spawnSync('tetgen', ['-rNEFC', `${base}.ele`], { encoding: 'utf8' });
+  assert.doesNotMatch(r.stdout + r.stderr, /missing connection|Wrong seg/i, 'tetgen -rNEFC reads the files cleanly');
+});
+
+// ---- The Node command line -----------------------------------------------------
+
+function nodeCliRun(args) {
+  return spawnSync(process.execPath, [nodeCli, ...args], { encoding: 'utf8' });
+}
+
+test('the Node command line has the native exit codes and stats keys', { skip: skipNative }, () => {
+  const box = join(root, 'examples/models/box.off');
+  const stats = join(work, 'cli.json');
+  const r = nodeCliRun(['mesh', box, '-o', join(work, 'cli.ele'), '--stats', stats]);
+  assert.equal(r.status, 0, r.stderr);
+  for (const ext of ['node', 'ele', 'face', 'edge']) assert.ok(existsSync(join(work, `cli.${ext}`)), ext);
+  const n = native(['mesh', box, '-o', join(work, 'native.ele'), '--stats', join(work, 'native.json'), '--quiet']);
+  assert.equal(n.status, 0);
+  const ws = JSON.parse(readFileSync(stats, 'utf8'));
+  for (const k of Object.keys(JSON.parse(readFileSync(join(work, 'native.json'), 'utf8')))) assert.ok(k in ws, k);
+  const wasmCheck = nodeCliRun(['check', box]);
+  const nativeCheck = native(['check', box]);
+  assert.equal(wasmCheck.status, 0);
+  assert.equal(wasmCheck.stdout, nativeCheck.stdout, 'the same check JSON, byte for byte');
+  const broken = join(work, 'open.off');
+  writeFileSync(broken, 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n');
+  for (const args of [['check', broken], ['mesh', broken, '-o', join(work, 'x.vtu')]]) {
+    const w = nodeCliRun(args);
+    const nn = native(args);
+    assert.equal(w.status, 2, w.stderr);
+    assert.equal(w.status, nn.status);
+  }
+  assert.equal(nodeCliRun(['mesh', box, '-o', join(work, 'x.vtu'), '--max-vertices', '8']).status, 3);
+  assert.equal(nodeCliRun(['mesh', box, '-o', join(work, 'x.vtu'), '--rho', '0.5']).status, 1);
+  assert.equal(nodeCliRun(['mesh', box, '-o', join(work, 'x.vtu'), '--rhoo', '3']).status, 1);
+  assert.equal(nodeCliRun(['mesh', box, '-o', join(work, 'x.txt')]).status, 1);
+  assert.equal(nodeCliRun(['check', join(work, 'missing.off')]).status, 2);
+  const lines = nodeCliRun(['mesh', box, '-o', join(work, 'x.vtu')]).stderr;
+  assert.match(lines, /^wqmesh: initialize: \d+ vertices$/m, 'plain progress lines when stderr is not a terminal');
+});
+
+test('Ctrl-C stops a Node command-line run at once and writes nothing', async () => {
+  const out = join(work, 'interrupted.vtu');
+  const child = spawn(process.execPath, [nodeCli, 'mesh', join(root, 'examples/models/box.off'), '-o', out,
+                                         '--max-size', '0.02', '--max-vertices', '2000000']);
+  let stderr = '';
+  let sentAt = 0;
+  child.stderr.on('data', (d) => {
+    stderr += d;
+    if (!sentAt && /refine: /.test(stderr)) {
+      sentAt = performance.now();
+      child.kill('SIGINT');
+    }
+  });
+  const code = await new Promise((ok) => child.on('exit', (c) => ok(c)));
+  assert.ok(sentAt > 0, `the run reached refine: ${stderr}`);
+  assert.equal(code, 130, stderr);
+  assert.match(stderr, /interrupted/);
+  assert.ok(!existsSync(out));
+  console.log(`# Ctrl-C to exit: ${(performance.now() - sentAt).toFixed(0)} ms`);
+});
