@@ -8,16 +8,19 @@
 #include <cstdlib>
 #include <string>
 
+#include "reader_detect.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
 namespace {
 
-/// Splits OFF text into whitespace-separated tokens, skipping `#` comments,
-/// and tracks the 1-based line of every token.
+/// Splits OFF text into whitespace-separated tokens, skipping `#` comments
+/// and a UTF-8 byte order mark at the start, and tracks the 1-based line of
+/// every token. A line ends in LF, CRLF or a lone CR.
 class OffScanner {
  public:
-  OffScanner(const char* data, std::size_t size) : p_(data), end_(data + size) {}
+  OffScanner(const char* data, std::size_t size)
+      : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
 
   /// Moves to the next token; false at the end of the data.
   bool next(std::string& token, long& line) {
@@ -36,9 +39,10 @@ class OffScanner {
     return p_ < end_ && *p_ != '\n' && *p_ != '\r';
   }
 
-  /// Skips whatever is left on the current line (colours, normals, comments).
+  /// Skips whatever is left on the current line (colours, normals, comments),
+  /// up to its line end.
   void skip_line() {
-    while (p_ < end_ && *p_ != '\n') ++p_;
+    while (p_ < end_ && *p_ != '\n' && *p_ != '\r') ++p_;
   }
 
   long line() const { return line_; }
@@ -51,13 +55,13 @@ class OffScanner {
   void skip_blank(bool cross) {
     while (p_ < end_) {
       const char c = *p_;
-      if (c == '\n') {
+      if (c == '\n' || c == '\r') {
         if (!cross) return;
         ++line_;
-        ++p_;
+        p_ += (c == '\r' && p_ + 1 < end_ && p_[1] == '\n') ? 2 : 1;  // CRLF is one
       } else if (c == '#') {
-        while (p_ < end_ && *p_ != '\n') ++p_;
-      } else if (is_space(c) && (cross || c != '\r')) {
+        while (p_ < end_ && *p_ != '\n' && *p_ != '\r') ++p_;
+      } else if (is_space(c)) {
         ++p_;
       } else {
         return;
@@ -125,7 +129,7 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
   std::string tok;
   long line = 1;
   if (!in.next(tok, line)) throw InputError(InputErrorKind::empty, "OFF: the file is empty");
-  if (!is_off_keyword(tok)) fail(InputErrorKind::syntax, line, "expected the OFF header, found '" + tok + "'");
+  if (!is_off_keyword(tok)) fail(InputErrorKind::syntax, line, "expected the OFF header, found '" + escape_bytes(tok) + "'");
 
   // `what` names what is missing; it is only called when the data has ended.
   auto need = [&](auto what) {
@@ -134,12 +138,12 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
   };
   unsigned long long nv = 0, nf = 0, ne = 0;
   need([] { return "the vertex count"; });
-  if (!parse_count(tok, nv)) fail(InputErrorKind::syntax, line, "bad vertex count '" + tok + "'");
+  if (!parse_count(tok, nv)) fail(InputErrorKind::syntax, line, "bad vertex count '" + escape_bytes(tok) + "'");
   need([] { return "the face count"; });
-  if (!parse_count(tok, nf)) fail(InputErrorKind::syntax, line, "bad face count '" + tok + "'");
+  if (!parse_count(tok, nf)) fail(InputErrorKind::syntax, line, "bad face count '" + escape_bytes(tok) + "'");
   if (in.more_on_line()) {
     need([] { return "the edge count"; });
-    if (!parse_count(tok, ne)) fail(InputErrorKind::syntax, line, "bad edge count '" + tok + "'");
+    if (!parse_count(tok, ne)) fail(InputErrorKind::syntax, line, "bad edge count '" + escape_bytes(tok) + "'");
   }
   in.skip_line();
   if (nv > limits.max_points)
@@ -162,10 +166,10 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
             std::to_string(nv) + " declared)"; });
       if (!parse_double(tok, p[k]))
         fail(InputErrorKind::syntax, line,
-             "vertex " + std::to_string(i) + ": bad coordinate '" + tok + "'");
+             "vertex " + std::to_string(i) + ": bad coordinate '" + escape_bytes(tok) + "'");
       if (!std::isfinite(p[k]))
         fail(InputErrorKind::non_finite, line,
-             "vertex " + std::to_string(i) + " has a non-finite coordinate '" + tok + "'");
+             "vertex " + std::to_string(i) + " has a non-finite coordinate '" + escape_bytes(tok) + "'");
     }
     in.skip_line();  // normals, colours, texture coordinates
     soup.points.push_back(p);
@@ -177,7 +181,7 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
     const long face_line = line;
     unsigned long long n = 0;
     if (!parse_count(tok, n))
-      fail(InputErrorKind::syntax, line, "face " + std::to_string(f) + ": bad vertex count '" + tok + "'");
+      fail(InputErrorKind::syntax, line, "face " + std::to_string(f) + ": bad vertex count '" + escape_bytes(tok) + "'");
     if (n > limits.max_face_size)
       fail(InputErrorKind::too_large, line,
            "face " + std::to_string(f) + " has " + std::to_string(n) +
@@ -189,7 +193,7 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
       long long idx = 0;
       if (!parse_int(tok, idx))
         fail(InputErrorKind::syntax, line,
-             "face " + std::to_string(f) + ": bad vertex index '" + tok + "'");
+             "face " + std::to_string(f) + ": bad vertex index '" + escape_bytes(tok) + "'");
       if (idx < 0 || static_cast<unsigned long long>(idx) >= nv)
         fail(InputErrorKind::bad_index, line,
              "face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) +

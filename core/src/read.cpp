@@ -1,24 +1,54 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // wqmesh: reading a polyhedron from bytes or a file, the format decided by
 // content (see input.h).
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "reader_detect.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
 
+std::string escape_bytes(const char* data, std::size_t size, std::size_t max) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  const std::size_t n = std::min(size, max);
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char c = static_cast<unsigned char>(data[i]);
+    if (c == '\\' || c == '\'') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  if (size > max) out += "...";
+  return out;
+}
+
 PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimits& limits) {
   if (size == 0 || data == nullptr) throw InputError(InputErrorKind::empty, "the input is empty");
-  // OFF iff its first token, after blanks and `#` comments, is an OFF keyword.
-  std::size_t i = 0;
+  if (size > limits.max_bytes) return read_stl(data, size, limits);  // too_large, by size
+  // Binary STL first, by its exact size (no text has it, see read_stl): its
+  // free-form header may start with anything, "OFF" or "solid" included.
+  if (size >= 84 && binary_stl_size(data) == size) return read_stl(data, size, limits);
+  // OFF iff its first token, after a byte order mark, blanks and `#`
+  // comments, is an OFF keyword; ASCII STL iff it is `solid`.
+  std::size_t i = utf8_bom_length(data, size);
   for (;;) {
     while (i < size && (data[i] == ' ' || data[i] == '\t' || data[i] == '\n' || data[i] == '\r' ||
                         data[i] == '\f' || data[i] == '\v'))
       ++i;
     if (i < size && data[i] == '#') {
-      while (i < size && data[i] != '\n') ++i;
+      while (i < size && data[i] != '\n' && data[i] != '\r') ++i;
       continue;
     }
     break;
@@ -28,7 +58,44 @@ PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimit
          data[j] != '\r' && data[j] != '#')
     ++j;
   if (j > i && is_off_keyword(std::string(data + i, j - i))) return read_off(data, size, limits);
-  return read_stl(data, size, limits);
+  if (starts_with_solid(data, size)) return read_stl(data, size, limits);
+  throw_unknown_format(data, size, "an OFF or STL file");
+}
+
+std::size_t utf8_bom_length(const char* data, std::size_t size) {
+  return size >= 3 && static_cast<unsigned char>(data[0]) == 0xef &&
+                 static_cast<unsigned char>(data[1]) == 0xbb &&
+                 static_cast<unsigned char>(data[2]) == 0xbf
+             ? 3
+             : 0;
+}
+
+std::uint64_t binary_stl_size(const char* data) {
+  const auto* b = reinterpret_cast<const unsigned char*>(data + 80);
+  const std::uint64_t n = std::uint64_t(b[0]) | (std::uint64_t(b[1]) << 8) |
+                          (std::uint64_t(b[2]) << 16) | (std::uint64_t(b[3]) << 24);
+  return 84 + 50 * n;
+}
+
+bool starts_with_solid(const char* data, std::size_t size) {
+  std::size_t i = utf8_bom_length(data, size);
+  while (i < size && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+  if (size - i < 5) return false;
+  for (int k = 0; k < 5; ++k)
+    if (std::tolower(static_cast<unsigned char>(data[i + k])) != "solid"[k]) return false;
+  return true;
+}
+
+void throw_unknown_format(const char* data, std::size_t size, const char* what) {
+  std::string seen = "not " + std::string(what) + ": it starts with '" + escape_bytes(data, size, 24) +
+                     "' (" + std::to_string(size) + " bytes): no OFF header, no 'solid', and ";
+  if (size < 84)
+    throw InputError(InputErrorKind::truncated,
+                     seen + "shorter than the 84-byte header of a binary STL");
+  const std::uint64_t n = (binary_stl_size(data) - 84) / 50;
+  throw InputError(InputErrorKind::syntax,
+                   seen + "not a binary STL, whose header declaring " + std::to_string(n) +
+                       " triangles would make it " + std::to_string(84 + 50 * n) + " bytes long");
 }
 
 PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& limits) {

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "hashing.h"
+#include "reader_detect.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
@@ -55,15 +56,7 @@ PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64
                      "binary STL: " + std::to_string(n) + " triangles exceed the limit of " +
                          std::to_string(limits.max_faces));
   if (n == 0) throw InputError(InputErrorKind::empty, "binary STL: the header declares no triangles");
-  if (size != 84 + 50 * n) {
-    if (size < 84 + 50 * n)
-      throw InputError(InputErrorKind::truncated,
-                       "binary STL: the data ends in triangle " + std::to_string((size - 84) / 50) +
-                           " of " + std::to_string(n) + " declared");
-    throw InputError(InputErrorKind::syntax,
-                     "binary STL: " + std::to_string(size - 84 - 50 * n) +
-                         " bytes follow the " + std::to_string(n) + " declared triangles");
-  }
+  (void)size;  // == 84 + 50 n: read_stl decides binary by that alone
   PolygonSoup soup;
   soup.format = "STL-binary";
   CornerMerger merger(soup);
@@ -90,13 +83,15 @@ PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64
   return soup;
 }
 
-/// Whitespace tokens of ASCII STL with their 1-based lines.
+/// Whitespace tokens of ASCII STL with their 1-based lines (a line ends in
+/// LF, CRLF or a lone CR); a UTF-8 byte order mark at the start is skipped.
 class StlScanner {
  public:
-  StlScanner(const char* data, std::size_t size) : p_(data), end_(data + size) {}
+  StlScanner(const char* data, std::size_t size)
+      : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
   bool next(std::string& token, long& line) {
     while (p_ < end_ && std::isspace(static_cast<unsigned char>(*p_))) {
-      if (*p_ == '\n') ++line_;
+      if (*p_ == '\n' || (*p_ == '\r' && (p_ + 1 == end_ || p_[1] != '\n'))) ++line_;
       ++p_;
     }
     if (p_ >= end_) return false;
@@ -136,14 +131,15 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
   auto expect = [&](const char* word) {
     need((std::string("'") + word + "'").c_str());
     if (!same_word(tok, word))
-      fail(InputErrorKind::syntax, line, std::string("expected '") + word + "', found '" + tok + "'");
+      fail(InputErrorKind::syntax, line,
+           std::string("expected '") + word + "', found '" + escape_bytes(tok) + "'");
   };
   auto number = [&](const char* what, double& x) {
     need(what);
     char* stop = nullptr;
     x = std::strtod(tok.c_str(), &stop);
     if (tok.empty() || stop != tok.c_str() + tok.size())
-      fail(InputErrorKind::syntax, line, std::string("bad ") + what + " '" + tok + "'");
+      fail(InputErrorKind::syntax, line, std::string("bad ") + what + " '" + escape_bytes(tok) + "'");
   };
 
   PolygonSoup soup;
@@ -151,7 +147,8 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
   CornerMerger merger(soup);
   if (!in.next(tok, line)) throw InputError(InputErrorKind::empty, "STL: the file is empty");
   if (!same_word(tok, "solid"))
-    fail(InputErrorKind::syntax, line, "expected 'solid' (or a binary STL), found '" + tok.substr(0, 40) + "'");
+    fail(InputErrorKind::syntax, line,
+         "expected 'solid' (or a binary STL), found '" + escape_bytes(tok) + "'");
   // The solid's name: the rest of its line, up to a `facet` or `endsolid`
   // keyword (some writers put a whole STL on one line).
   auto skip_name = [&] {
@@ -173,7 +170,8 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
       break;
     }
     if (!in_solid) {  // several solids may follow one another
-      if (!same_word(tok, "solid")) fail(InputErrorKind::syntax, line, "expected 'solid', found '" + tok + "'");
+      if (!same_word(tok, "solid"))
+        fail(InputErrorKind::syntax, line, "expected 'solid', found '" + escape_bytes(tok) + "'");
       skip_name();
       in_solid = true;
       continue;
@@ -192,7 +190,8 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
       continue;
     }
     if (!same_word(tok, "facet"))
-      fail(InputErrorKind::syntax, line, "expected 'facet' or 'endsolid', found '" + tok + "'");
+      fail(InputErrorKind::syntax, line,
+           "expected 'facet' or 'endsolid', found '" + escape_bytes(tok) + "'");
     const long facet_line = line;
     expect("normal");
     // The normal is not used: its three components may be anything
@@ -200,21 +199,26 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
     for (int k = 0; k < 3; ++k) need("a normal coordinate");
     expect("outer");
     expect("loop");
+    // Exactly three vertices: an STL facet is a triangle.
     std::vector<int> face;
     for (;;) {
       need("'endloop'");
       if (same_word(tok, "endloop")) break;
       if (!same_word(tok, "vertex"))
-        fail(InputErrorKind::syntax, line, "expected 'vertex' or 'endloop', found '" + tok + "'");
-      if (face.size() >= limits.max_face_size)
-        fail(InputErrorKind::too_large, line, "too many vertices in one facet");
+        fail(InputErrorKind::syntax, line,
+             "expected 'vertex' or 'endloop', found '" + escape_bytes(tok) + "'");
+      if (face.size() == 3)
+        fail(InputErrorKind::syntax, line,
+             "triangle " + std::to_string(soup.faces.size()) +
+                 " has a fourth 'vertex': an STL facet has exactly three");
       Point3 p;
       for (int k = 0; k < 3; ++k) {
         number("vertex coordinate", p[k]);
         if (!std::isfinite(p[k]))
           fail(InputErrorKind::non_finite, line,
                "corner " + std::to_string(face.size()) + " of triangle " +
-                   std::to_string(soup.faces.size()) + " has a non-finite coordinate '" + tok + "'");
+                   std::to_string(soup.faces.size()) + " has a non-finite coordinate '" +
+                   escape_bytes(tok) + "'");
       }
       face.push_back(merger.index(p));
     }
@@ -243,19 +247,12 @@ PolygonSoup read_stl(const char* data, std::size_t size, const InputLimits& limi
                          std::to_string(limits.max_bytes));
   if (size == 0) throw InputError(InputErrorKind::empty, "STL: the file is empty");
   const auto* bytes = reinterpret_cast<const unsigned char*>(data);
-  // Binary iff the size matches the triangle count of the header exactly.
-  if (size >= 84) {
-    const std::uint64_t n = read_u32(bytes + 80);
-    if (size == 84 + 50 * n) return read_binary(bytes, size, n, limits);
-  }
-  std::size_t i = 0;
-  while (i < size && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
-  const bool looks_ascii = size - i >= 5 && same_word(std::string(data + i, 5), "solid");
-  if (looks_ascii) return read_ascii(data, size, limits);
-  if (size < 84)
-    throw InputError(InputErrorKind::truncated,
-                     "binary STL: " + std::to_string(size) + " bytes, less than the 84-byte header");
-  return read_binary(bytes, size, read_u32(bytes + 80), limits);
+  // Binary iff the size matches the triangle count of the header exactly
+  // (see input.h: no text has such a size); ASCII iff it starts with solid.
+  if (size >= 84 && binary_stl_size(data) == size)
+    return read_binary(bytes, size, read_u32(bytes + 80), limits);
+  if (starts_with_solid(data, size)) return read_ascii(data, size, limits);
+  throw_unknown_format(data, size, "an STL file");
 }
 
 }  // namespace wqmesh

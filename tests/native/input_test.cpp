@@ -282,11 +282,16 @@ TEST(InputStl, Errors) {
   expect_error([&] { read_stl(badnum.data(), badnum.size()); }, InputErrorKind::syntax, "line 5");
   std::string nan = "solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\n";
   expect_error([&] { read_stl(nan.data(), nan.size()); }, InputErrorKind::non_finite, "line 5");
-  // Binary: cut in the middle of triangle 2; a NaN in triangle 3.
+  // Binary: cut in the middle of triangle 2 (binary only at 84 + 50 n bytes,
+  // so the message says what that size would be); a NaN in triangle 3.
   const std::string b = binary_stl(tris, "bin");
   const std::string bcut = b.substr(0, 84 + 50 * 2 + 20);
-  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::truncated,
-               "triangle 2");
+  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
+               "not an STL file: it starts with 'bin  ");
+  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
+               "(204 bytes)");
+  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
+               "declaring 4 triangles would make it 284 bytes long");
   std::string bnan = b;
   const float q = std::nanf("");
   std::memcpy(&bnan[84 + 50 * 3 + 12 + 4], &q, 4);
@@ -299,6 +304,135 @@ TEST(InputStl, Errors) {
   few.max_faces = 2;
   expect_error([&] { read_stl(b.data(), b.size(), few); }, InputErrorKind::too_large, "limit");
   expect_error([&] { read_stl(a.data(), a.size(), few); }, InputErrorKind::too_large, "line");
+}
+
+// ---- honest readers: byte order marks, line ends, unknown content --------
+
+const char kBom[] = "\xef\xbb\xbf";
+
+/// `text` with every "\n" replaced by `end`.
+std::string with_line_ends(const std::string& text, const std::string& end) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n')
+      out += end;
+    else
+      out += c;
+  }
+  return out;
+}
+
+TEST(InputHonest, ByteOrderMarkIsSkipped) {
+  const std::string off_bom = kBom + std::string(kTetOff);
+  const PolygonSoup s = off(off_bom);
+  expect_tet(s);
+  EXPECT_EQ(s.face_line[0], 7);
+  EXPECT_EQ(any(off_bom).format, "OFF");
+  const auto tris = tet_tris();
+  const std::string stl_bom = kBom + ascii_stl(tris);
+  expect_stl_tet(read_stl(stl_bom.data(), stl_bom.size()), tris);
+  EXPECT_EQ(any(stl_bom).format, "STL-ascii");
+  EXPECT_EQ(any(stl_bom).face_line[1], 9);
+  // A binary STL whose header happens to start with the same three bytes is
+  // still binary (decided by its size).
+  const std::string bin = binary_stl(tris, kBom + std::string("binary"));
+  EXPECT_EQ(any(bin).format, "STL-binary");
+  expect_stl_tet(any(bin), tris);
+}
+
+TEST(InputHonest, LineEndsLfCrlfAndCr) {
+  const auto tris = tet_tris();
+  for (const std::string end : {"\n", "\r\n", "\r"}) {
+    SCOPED_TRACE(escape_bytes(end));
+    const std::string o = with_line_ends(kTetOff, end);
+    const PolygonSoup s = any(o);
+    expect_tet(s);
+    EXPECT_EQ(s.face_line[0], 7);
+    EXPECT_EQ(s.face_line[3], 10);
+    const std::string a = with_line_ends(ascii_stl(tris), end);
+    const PolygonSoup t = any(a);
+    EXPECT_EQ(t.format, "STL-ascii");
+    expect_stl_tet(t, tris);
+    EXPECT_EQ(t.face_line[1], 9);
+    // Lines are still counted right in errors: vertex 1 on line 4.
+    std::string bad = with_line_ends("OFF\n4 4 6\n0 0 0\n1 nan 0\n0 1 0\n0 0 1\n", end);
+    expect_error([&] { any(bad); }, InputErrorKind::non_finite, "line 4: vertex 1");
+    // Comments and colours end at any line end, too.
+    const std::string commented =
+        with_line_ends("# comment\nOFF # header\n4 4 6\n0 0 0 # c\n1 0 0\n0 1 0\n0 0 1\n"
+                       "3 0 2 1 0.5 0.5 0.5\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+                       end);
+    expect_tet(any(commented));
+  }
+}
+
+/// Deterministic bytes (a linear congruential generator).
+std::string random_bytes(std::size_t n, std::uint32_t seed) {
+  std::string s(n, '\0');
+  for (char& c : s) {
+    seed = seed * 1664525u + 1013904223u;
+    c = static_cast<char>(seed >> 24);
+  }
+  return s;
+}
+
+TEST(InputHonest, NeitherOffNorStl) {
+  for (std::uint32_t seed : {1u, 2u, 3u, 12345u}) {
+    const std::string r = random_bytes(4096, seed);
+    std::uint32_t n;
+    std::memcpy(&n, r.data() + 80, 4);  // little-endian machines only
+    ASSERT_NE(84 + 50 * std::uint64_t(n), 4096u) << "pick another seed";
+    expect_error([&] { any(r); }, InputErrorKind::syntax, "not an OFF or STL file: it starts with '");
+    expect_error([&] { any(r); }, InputErrorKind::syntax, "(4096 bytes)");
+    expect_error([&] { any(r); }, InputErrorKind::syntax,
+                 "would make it " + std::to_string(84 + 50 * std::uint64_t(n)) + " bytes long");
+    // What was seen is quoted escaped: the first 24 bytes, then "...".
+    expect_error([&] { any(r); }, InputErrorKind::syntax, "'" + escape_bytes(r, 24) + "'");
+  }
+  expect_error([] { any("PLY\nformat ascii 1.0\n"); }, InputErrorKind::truncated,
+               "not an OFF or STL file: it starts with 'PLY\\x0aformat ascii 1.0\\x0a'");
+  const std::string text(200, 'x');
+  expect_error([&] { any(text); }, InputErrorKind::syntax, "not an OFF or STL file");
+  expect_error([] { any(std::string("\0\0\0", 3)); }, InputErrorKind::truncated,
+               "'\\x00\\x00\\x00' (3 bytes)");
+}
+
+TEST(InputHonest, MessagesQuoteBytesEscaped) {
+  EXPECT_EQ(escape_bytes(std::string("a\0b\n'\\\xff", 7)), "a\\x00b\\x0a\\'\\\\\\xff");
+  EXPECT_EQ(escape_bytes(std::string(50, 'z'), 40), std::string(40, 'z') + "...");
+  // A NUL inside a number: the whole token is quoted, NUL escaped, so the
+  // message cannot end at the NUL and show a valid-looking "1".
+  const std::string nul = std::string("OFF\n4 4 6\n0 0 0\n1") + '\0' + "5 0 0\n0 1 0\n0 0 1\n";
+  expect_error([&] { any(nul); }, InputErrorKind::syntax, "line 4: vertex 1: bad coordinate '1\\x005'");
+  const std::string nul_index =
+      std::string(kTetOff).replace(std::string(kTetOff).find("3 0 1 3"), 7, std::string("3 0 1\0""3", 7));
+  expect_error([&] { any(nul_index); }, InputErrorKind::syntax, "bad vertex index '1\\x003'");
+  const std::string stl_nul = std::string("solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1") +
+                              '\0' + "7 0 0\n";
+  expect_error([&] { any(stl_nul); }, InputErrorKind::syntax,
+               "line 5: bad vertex coordinate '1\\x007'");
+  expect_error([] { off("\xef\xbb\xbfPLY\n"); }, InputErrorKind::syntax, "found 'PLY'");
+  expect_error([] { off("O\x01" "FF\n"); }, InputErrorKind::syntax, "found 'O\\x01FF'");
+}
+
+TEST(InputHonest, FourVertexStlFacetIsASyntaxError) {
+  const std::string quad =
+      "solid q\n"
+      "facet normal 0 0 1\n"
+      "outer loop\n"
+      "vertex 0 0 0\n"
+      "vertex 1 0 0\n"
+      "vertex 1 1 0\n"
+      "vertex 0 1 0\n"
+      "endloop\n"
+      "endfacet\n"
+      "endsolid q\n";
+  expect_error([&] { any(quad); }, InputErrorKind::syntax,
+               "ASCII STL line 7: triangle 0 has a fourth 'vertex': an STL facet has exactly three");
+  const std::string two =
+      "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\n"
+      "endsolid q\n";
+  expect_error([&] { any(two); }, InputErrorKind::syntax, "line 6: triangle 0 has only 2 vertices");
 }
 
 TEST(InputFile, MissingFileIsIoError) {

@@ -24,18 +24,26 @@ struct InputLimits {
 /// comments anywhere; counts on the header line or the next, the edge count
 /// optional; polygons of any size; whatever follows the coordinates of a
 /// vertex (normals, colours) or the indices of a face (colours) on its line is
-/// ignored). Throws InputError (syntax, truncated, too_large, non_finite,
-/// bad_index, empty) naming the 1-based line.
+/// ignored). A UTF-8 byte order mark at the start is skipped; lines end in
+/// LF, CRLF or a lone CR (each counts as one line end). Throws InputError
+/// (syntax, truncated, too_large, non_finite, bad_index, empty) naming the
+/// 1-based line and quoting the offending token escaped (escape_bytes).
 /// face_line[i] is the line of face i's vertex count.
 PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limits = {});
 
-/// Reads an STL file, ASCII or binary, decided by content (a binary file whose
-/// size is 84 + 50 n for the n in its header is binary, even if it starts with
-/// "solid"). Corners are merged when their coordinates are identical.
-/// ASCII keywords are case-insensitive; normals are not used (nor checked);
-/// several solids may follow one another. face_line[i] is the line of
-/// triangle i's `facet` keyword (ASCII) or 0 (binary). Errors name the line
-/// (ASCII) or the 0-based triangle (binary).
+/// Reads an STL file, ASCII or binary, decided by content: binary exactly
+/// when the size is 84 + 50 n for the n in bytes 80-83 of its header (even if
+/// it starts with "solid"; no text file under InputLimits::max_bytes has such
+/// a size, since four text bytes make n at least 0x09090909); else ASCII when
+/// the first word (after a UTF-8 byte order mark and blanks) is `solid`; else
+/// InputError(syntax) "not an STL file", quoting the first bytes and the size
+/// a binary STL with that header would have (truncated when shorter than the
+/// 84-byte header). Corners are merged when their coordinates are identical.
+/// ASCII keywords are case-insensitive; lines end in LF, CRLF or CR; a facet
+/// has exactly three vertices (a fourth `vertex` is a syntax error); normals
+/// are not used (nor checked); several solids may follow one another.
+/// face_line[i] is the line of triangle i's `facet` keyword (ASCII) or 0
+/// (binary). Errors name the line (ASCII) or the 0-based triangle (binary).
 PolygonSoup read_stl(const char* data, std::size_t size, const InputLimits& limits = {});
 
 /// True when `token` is an OFF header keyword: "OFF" after optional letters
@@ -43,9 +51,22 @@ PolygonSoup read_stl(const char* data, std::size_t size, const InputLimits& limi
 bool is_off_keyword(const std::string& token);
 
 /// Reads OFF or STL from bytes, deciding the format by content, not by name:
-/// OFF when the first token after blanks and `#` comments is an OFF keyword,
-/// STL otherwise.
+/// binary STL when the size matches its header exactly (see read_stl); OFF
+/// when the first token after a UTF-8 byte order mark, blanks and `#`
+/// comments is an OFF keyword; ASCII STL when it is `solid`; otherwise
+/// InputError(syntax) "not an OFF or STL file", quoting the first bytes
+/// (escaped) and the size a binary STL with that header would have
+/// (truncated instead when the input is shorter than the 84-byte header).
 PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimits& limits = {});
+
+/// The bytes quoted for a message: printable ASCII as is, backslash and
+/// quote escaped, every other byte (NUL, control, non-ASCII) as \xHH, and
+/// at most `max` bytes, followed by "..." when there were more. So a message
+/// never ends early at a NUL and shows exactly what the input holds.
+std::string escape_bytes(const char* data, std::size_t size, std::size_t max = 40);
+inline std::string escape_bytes(const std::string& s, std::size_t max = 40) {
+  return escape_bytes(s.data(), s.size(), max);
+}
 
 /// Reads a file from disk (throws InputError(io) if it cannot be read).
 PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& limits = {});
