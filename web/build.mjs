@@ -36,7 +36,7 @@ mkdirSync(out, { recursive: true });
 
 // The page.
 for (const f of readdirSync(join(root, 'web'))) {
-  if (f === 'build.mjs' || f === 'README.md') continue;
+  if (f === 'build.mjs' || f === 'measure.mjs' || f === 'README.md') continue;  // Node scripts
   if (/\.(html|css|mjs)$/.test(f)) copy(join(root, 'web', f), join(out, f));
 }
 // three.js: the module build and the one addon the page uses.

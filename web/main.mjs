@@ -514,6 +514,10 @@ function bindView() {
   $('v-rest').addEventListener('change', onView('rest', (t) => t.value));
   $('v-balls').addEventListener('change', (ev) => { onView('balls', (t) => t.checked, false)(ev); showOverlays(); });
   $('v-pumped').addEventListener('change', (ev) => { onView('pumped', (t) => t.checked, false)(ev); showOverlays(); });
+  $('v-reset').addEventListener('click', () => {
+    const b = page.meshInfo?.box;
+    viewer.frame(b ? Math.max(...b.hi.map((x, k) => x - b.lo[k])) : page.surface?.size);
+  });
   $('v-surface').addEventListener('change', (ev) => {
     viewer.setSurfaceVisible(ev.target.checked || !page.meshInfo);
     viewer.groups.mesh.visible = !ev.target.checked;

@@ -119,30 +119,25 @@ export function extract(mesh, view) {
     kept[t] = hi ? 2 : 1;
     ++keptTets;
   }
-  // Pass 1: count drawn faces per group and mark drawn tets.
-  const fade = rest === 'fade';
-  const drawn = new Int32Array(nt).fill(-1);
+  // Pass 1: the group of each face of each kept tet (0 not drawn, 1 opaque,
+  // 2 faded; two bits per face), the counts, and the list of drawn tets.
+  const fade = rest === 'fade', shrunk = Boolean(view.shrunk);
+  const packed = new Uint8Array(nt);
+  const drawnList = new Int32Array(keptTets);
   let nOpaque = 0, nFaded = 0, nDrawn = 0;
-  const faceGroup = (t, i) => {  // 0 not drawn, 1 opaque, 2 faded
-    const k = kept[t];
-    if (!k) return 0;
-    const n = nb[4 * t + i];
-    const kn = n < 0 ? 0 : kept[n];
-    if (view.shrunk) return fade && k === 1 ? 2 : 1;
-    if (kn === 0) return fade && k === 1 ? 2 : 1;
-    if (fade && k === 2 && kn === 1) return 1;
-    return 0;
-  };
   for (let t = 0; t < nt; ++t) {
-    if (!kept[t]) continue;
-    let any = false;
+    const k = kept[t];
+    if (!k) continue;
+    const own = fade && k === 1 ? 2 : 1;
+    let bits = 0;
     for (let i = 0; i < 4; ++i) {
-      const g = faceGroup(t, i);
+      const n = nb[4 * t + i];
+      const kn = n < 0 ? 0 : kept[n];
+      const g = shrunk || kn === 0 ? own : fade && k === 2 && kn === 1 ? 1 : 0;
       if (g === 1) ++nOpaque; else if (g === 2) ++nFaded;
-      if (g) any = true;
+      bits |= g << (2 * i);
     }
-    if (view.shrunk && kept[t] && !any) any = true;
-    if (any) drawn[t] = nDrawn++;
+    if (bits || shrunk) { packed[t] = bits; drawnList[nDrawn++] = t; }
   }
   const positions = new Float32Array(12 * nDrawn);
   const centroids = new Float32Array(12 * nDrawn);
@@ -153,9 +148,8 @@ export function extract(mesh, view) {
   const edgeBuf = new Uint32Array(wantEdges ? 12 * nDrawn : 0);
   let ne = 0;
   let fo = 0, ff = nOpaque;
-  for (let t = 0; t < nt; ++t) {
-    const d = drawn[t];
-    if (d < 0) continue;
+  for (let d = 0; d < nDrawn; ++d) {
+    const t = drawnList[d];
     const o = 4 * t;
     let cx = 0, cy = 0, cz = 0;
     for (let k = 0; k < 4; ++k) {
@@ -173,7 +167,7 @@ export function extract(mesh, view) {
     }
     let edgeMask = 0;
     for (let i = 0; i < 4; ++i) {
-      const g = faceGroup(t, i);
+      const g = (packed[t] >> (2 * i)) & 3;
       if (!g) continue;
       const F = TET_FACES[i];
       const at = g === 1 ? fo++ : ff++;

@@ -26,7 +26,7 @@ function shrinkMaterial(material, shrink) {
 export class Viewer {
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: false });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: false });
     this.renderer.setPixelRatio(Math.min(2, globalThis.devicePixelRatio || 1));
     this.renderer.setClearColor(0xf4f6f8, 1);
     this.canvas = this.renderer.domElement;
@@ -101,19 +101,30 @@ export class Viewer {
    * happen during a run.
    */
   warmUp() {
-    const scene = new THREE.Scene();
+    // In the real scene (its lights are part of every program's key).
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(9), 3));
     g.setAttribute('tetCentroid', new THREE.BufferAttribute(new Float32Array(9), 3));
     g.setAttribute('color', new THREE.BufferAttribute(new Uint8Array(9), 3, true));
-    for (const m of [this.opaque, this.faded]) scene.add(new THREE.Mesh(g, m));
-    scene.add(new THREE.LineSegments(g, this.edgeMaterial));
-    for (const m of this.surfaceMaterials()) scene.add(m.isPointsMaterial ? new THREE.Points(g, m)
-      : m.isLineBasicMaterial ? new THREE.LineSegments(g, m) : new THREE.Mesh(g, m));
-    scene.add(this.camera.clone());
-    this.renderer.compile(scene, this.camera);
-    this.renderer.render(scene, this.camera);
+    g.setIndex(new THREE.BufferAttribute(new Uint32Array([0, 1, 2]), 1));
+    const group = new THREE.Group();
+    const mesh = new THREE.Mesh(g, [this.opaque, this.faded]);
+    g.addGroup(0, 3, 0);
+    g.addGroup(0, 3, 1);
+    group.add(mesh, new THREE.LineSegments(g, this.edgeMaterial));
+    for (const m of this.surfaceMaterials()) {
+      group.add(m.isPointsMaterial ? new THREE.Points(g, m) : m.isLineBasicMaterial ? new THREE.LineSegments(g, m)
+        : new THREE.Mesh(g, m));
+    }
+    const ball = new THREE.InstancedMesh(new THREE.SphereGeometry(1, 4, 4), this.mats.balls, 1);
+    group.add(ball);
+    this.scene.add(group);
+    this.renderer.compile(this.scene, this.camera);
+    this.renderer.render(this.scene, this.camera);
+    this.scene.remove(group);
     g.dispose();
+    ball.geometry.dispose();
+    ball.dispose();
   }
 
   /** The materials of the preview (made once, shared by every preview). */
