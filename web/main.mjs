@@ -346,11 +346,12 @@ async function showResult(result, ms, id) {
   document.querySelectorAll('[data-download]').forEach((b) => { b.disabled = false; });
   const s = result.stats;
   const stop = s.stopped ? ` Stopped (${s.stopped}): ${s.stop_message || ''}` : '';
-  status(`Meshed ${page.input.name}: ${s.tets} tets in ${(ms / 1000).toFixed(2)} s.${stop}`, Boolean(s.stopped));
+  status(`Meshed ${page.input.name} (${(ms / 1000).toFixed(1)} s with the transfers).${stop}`, Boolean(s.stopped));
   $('legend-input').hidden = true;
   $('legend').hidden = false;
   viewer.setSurfaceVisible($('v-surface').checked);
-  $('viewnote').textContent = `mesh: ${s.tets} tets, ${s.vertices} vertices`;
+  $('viewnote').replaceChildren('mesh: ', el('span', { 'data-stat': 'tets', text: formatStat('tets', s.tets) }), ' tets, ',
+    el('span', { 'data-stat': 'vertices', text: formatStat('vertices', s.vertices) }), ' vertices');
   showOverlays();
   await refreshView();
   if (id !== page.runSeq) return;

@@ -143,6 +143,15 @@ test('file input: spike.off meshes and shows the package\'s numbers', { skip }, 
   assert.equal(counts.sharpVertices, report.analysis.counts.sharp_vertices);
   assert.equal(counts.sharpEdges, report.analysis.counts.sharp_edges);
   assert.equal(counts.edges, report.plc.edges);
+  // A file dropped anywhere on the page loads too.
+  await page.evaluate((text) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([text], 'dropped_box.off'));
+    document.querySelector('h1').dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, readFileSync(join(root, 'examples/models/box.off'), 'utf8'));
+  await page.waitForFunction(() => document.body.dataset.input === 'dropped_box.off');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  assert.equal(await page.textContent('[data-stat=tets]'), String(packageResult(model('box.off'), DEFAULTS).stats.tets));
   await page.context().close();
 });
 
@@ -304,16 +313,16 @@ function checkWholeTets(view, result, expected, what) {
 }
 
 test('clipping plane keeps whole tets; downloads; screenshots at both widths', { skip }, async () => {
-  const query = '?example=bracket.off&maxSize=0.3&axis=y&cut=0.5&bound=20';
+  const query = '?example=bracket.off&maxSize=0.3&cut=0.6&bound=25';  // plane x = 3.6, through the hole
   const page = await open(query);
   assert.equal(await waitState(page, ['done', 'error']), 'done');
   const options = { ...DEFAULTS, maxSize: 0.3 };
   const result = packageResult(model('bracket.off'), options);
   assertSameNumbers(await shownStats(page), result.stats, 'bracket.off');
   const box = await page.evaluate(() => window.__wqmeshPage.meshInfo.box);
-  const at = (cut) => box.lo[1] + cut * (box.hi[1] - box.lo[1]);
+  const at = (cut) => box.lo[0] + cut * (box.hi[0] - box.lo[0]);
   const first = await drawnFaces(page);
-  checkWholeTets(first, result, expectedCut(result, [0, 1, 0], at(0.5)), 'cut 0.5');
+  checkWholeTets(first, result, expectedCut(result, [1, 0, 0], at(0.6)), 'cut 0.6');
   // Move the plane: a new picture, different tets, still whole ones.
   const seq = await page.evaluate(() => Number(document.body.dataset.viewSeq));
   await page.$eval('#v-cut', (e) => { e.value = '0.3'; e.dispatchEvent(new Event('input', { bubbles: true })); });
@@ -322,7 +331,7 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
   await page.waitForTimeout(200);
   const second = await drawnFaces(page);
   assert.ok(second.kept < first.kept, 'fewer tets kept with the plane moved towards lo');
-  checkWholeTets(second, result, expectedCut(result, [0, 1, 0], at(0.3)), 'cut 0.3');
+  checkWholeTets(second, result, expectedCut(result, [1, 0, 0], at(0.3)), 'cut 0.3');
   assert.match(page.url(), /cut=0.3/);
   // Picking: the worst tet from the list shows its numbers.
   await page.click('#worst button');
@@ -337,7 +346,9 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
   const [png] = await Promise.all([page.waitForEvent('download'), page.click('[data-download=png]')]);
   assert.equal(readFileSync(await png.path()).subarray(1, 4).toString(), 'PNG');
   // Screenshots: clip on, tets below 20 degrees highlighted, both widths.
-  await page.$eval('#v-cut', (e) => { e.value = '0.5'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.$eval('#v-cut', (e) => { e.value = '0.6'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.click('#v-reset');
+  await page.$eval('#controls', (e) => { e.scrollTop = 0; });
   await page.waitForTimeout(500);
   await page.screenshot({ path: join(shots, 'bracket-1280x800.png') });
   await page.context().close();
