@@ -375,3 +375,22 @@ test('Ctrl-C stops a Node command-line run at once and writes nothing', async ()
   assert.ok(!existsSync(out));
   console.log(`# Ctrl-C to exit: ${(performance.now() - sentAt).toFixed(0)} ms`);
 });
+
+test('on a terminal the Node command line draws a progress bar', { skip: !existsSync('/usr/bin/script') && 'no script(1)' }, () => {
+  // script(1) gives the command a pseudo-terminal.
+  const out = join(work, 'tty.vtu');
+  const r = spawnSync('script', ['-qec', `${process.execPath} ${nodeCli} mesh ${join(root, 'examples/models/spike.off')} -o ${out}`,
+                                 '/dev/null'], { encoding: 'utf8' });
+  assert.equal(r.status, 0, r.stdout);
+  assert.match(r.stdout, /\rwqmesh: \[[#.]{30}\] +\d+% (initialize|conform|refine|pump|extract) \d+ vertices/);
+  assert.ok(existsSync(out));
+});
+
+test('calls at the same time run in workers of their own and all succeed', async () => {
+  const models = ['box.off', 'spike.off', 'thin_wedge.off'];
+  const results = await Promise.all(models.map((m) => mesh(example(m))));
+  for (const [k, r] of results.entries()) {
+    assert.equal(r.stats.conforming, true, models[k]);
+    signedVolume(r.vertices, r.tets, models[k]);
+  }
+});
