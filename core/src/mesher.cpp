@@ -18,6 +18,54 @@ namespace wqmesh {
 
 namespace mesher {
 
+namespace {
+
+/// The cell graph in a canonical order that depends only on the cells (their
+/// vertex ids, which are insertion indices, and their orientation), not on
+/// where CGAL's containers put them: CGAL's cell order follows the memory
+/// history of the triangulation (removals with pointer-ordered sets, free
+/// lists), which differs between native and wasm (32-bit pointers) even for
+/// the same insertions. Within a cell the vertices are sorted, then the last
+/// two swapped if that took an odd permutation (orientation kept; neighbours
+/// follow their opposite vertices); cells are then sorted by that tuple, the
+/// infinite vertex (kInfinite = -1) first. Beyond the paper: the flood fill of
+/// interior_labels is order-independent only when every subfacet is a wall,
+/// so on a stopped, non-conforming run the labels (and so the extracted tets,
+/// violations and volume) were platform-dependent before this.
+RegularTriangulation::CellGraph canonical(const RegularTriangulation::CellGraph& g) {
+  const std::size_t n = g.cells.size();
+  std::vector<Tet> cells(n);
+  std::vector<std::array<int, 4>> nb(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    std::array<int, 4> perm{{0, 1, 2, 3}};
+    const Tet& t = g.cells[c];
+    std::sort(perm.begin(), perm.end(), [&](int a, int b) { return t[a] < t[b]; });
+    int inversions = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) inversions += perm[i] > perm[j];
+    if (inversions % 2) std::swap(perm[2], perm[3]);
+    for (int k = 0; k < 4; ++k) {
+      cells[c][k] = t[perm[k]];
+      nb[c][k] = g.neighbor[c][perm[k]];
+    }
+  }
+  std::vector<int> order(n);
+  for (std::size_t c = 0; c < n; ++c) order[c] = static_cast<int>(c);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return cells[a] < cells[b]; });
+  std::vector<int> rank(n);
+  for (std::size_t i = 0; i < n; ++i) rank[order[i]] = static_cast<int>(i);
+  RegularTriangulation::CellGraph out;
+  out.cells.resize(n);
+  out.neighbor.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.cells[i] = cells[order[i]];
+    for (int k = 0; k < 4; ++k) out.neighbor[i][k] = rank[nb[order[i]][k]];
+  }
+  return out;
+}
+
+}  // namespace
+
 MeshResult Mesher::extract() {
   MeshResult r;
   r.stopped = stop_reason_;
@@ -27,7 +75,8 @@ MeshResult Mesher::extract() {
     nn_.resize(verts_.size());
     for (std::size_t v = 0; v < verts_.size(); ++v) nn_[v] = nearest_neighbour(static_cast<int>(v));
   }
-  const RegularTriangulation::CellGraph g = tri_.cell_graph();
+  // In canonical order, so that the output is the same on every platform.
+  const RegularTriangulation::CellGraph g = canonical(tri_.cell_graph());
   const std::vector<char> inside = interior_labels(g);
   // Which input facet each wall triangle lies in.
   std::unordered_map<Tri, int, TriHash> facet_of;
@@ -196,7 +245,13 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
       }
     }
     const auto t0 = clock::now();
-    step();
+    // A walk past its stated bound (LoopBoundError, triangulation.h) is an
+    // internal error: named with the phase, the loop and the vertex.
+    try {
+      step();
+    } catch (const LoopBoundError& e) {
+      throw std::runtime_error(std::string("internal error in ") + name + ": " + e.what());
+    }
     PhaseStats s;
     s.name = name;
     s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
@@ -222,6 +277,7 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
   phases.push_back(s);
   r.phases = phases;
+  if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
   if (r.stopped == "limit" && r.stop_message.empty()) {
     char text[200];
     std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,
