@@ -17,15 +17,9 @@ Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressC
   trace_ = std::getenv("WQMESH_TRACE") != nullptr;
   facet_dt_.resize(domain.p.facets.size());
   // Each facet's planar triangulation projects along the largest component of
-  // its normal, lifted from the plane through its first vertex (see
-  // PlanarDelaunay): points collinear in 3D stay collinear there.
-  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) {
-    const PlcFacet& F = domain.p.facets[f];
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::abs(F.normal[k]) > std::abs(F.normal[axis])) axis = k;
-    facet_dt_[f].set_plane(axis, domain.p.vertices[F.loops.at(0).at(0)][axis]);
-  }
+  // its normal and tests circles in the plane's metric (see PlanarDelaunay):
+  // points collinear in 3D stay collinear there, and no point is hidden.
+  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) facet_dt_[f].set_plane(domain.p.facets[f].normal);
   vertex_sectors_.assign(domain.p.vertices.size(), {});
 }
 

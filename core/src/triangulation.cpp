@@ -4,16 +4,19 @@
 #include "triangulation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
 
-#include <CGAL/Regular_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/iterator.h>
+
+#include "exact.h"
 
 namespace wqmesh {
 
@@ -33,13 +36,6 @@ using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
 using WPoint = K::Weighted_point_3;
 using BPoint = K::Point_3;
-
-// Planar Delaunay triangulation of one facet's vertices, as a 2D regular
-// triangulation of their projections (see PlanarDelaunay). Vertex info = our id.
-using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, K, CGAL::Regular_triangulation_vertex_base_2<K>>;
-using Fb2 = CGAL::Regular_triangulation_face_base_2<K>;
-using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
-using Dt2 = CGAL::Regular_triangulation_2<K, Tds2>;
 
 }  // namespace
 
@@ -89,7 +85,8 @@ struct RegularTriangulation::Impl {
     });
   }
   // Visits the cells around a (through their faces at a) until `stop` says
-  // so; returns whether it did.
+  // so; returns whether it did. Bounded by the number of cells: a
+  // breadth-first walk that marks each cell it queues, so none twice.
   template <class Stop>
   bool walk_star(Rt::Vertex_handle a, Stop&& stop) const {
     walk.clear();
@@ -276,8 +273,16 @@ bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out) const 
   Rt::Cell_handle c;
   int i, j;
   if (!impl_->find_edge(impl_->handle(a), impl_->handle(b), c, i, j)) return false;
+  // The cells around an edge have distinct opposite vertices: at most one
+  // per vertex of the triangulation, the infinite one included.
+  const std::size_t bound = impl_->rt.number_of_vertices() + 1;
+  std::size_t n = 0;
   auto cell = impl_->rt.incident_cells(c, i, j), done = cell;
   do {
+    if (++n > bound)
+      throw LoopBoundError("RegularTriangulation::edge_ring: the cells around edge " + std::to_string(a) + "-" +
+                           std::to_string(b) + " passed their bound of " + std::to_string(bound) +
+                           " (the number of vertices plus 1)");
     for (int k = 0; k < 4; ++k) {
       const Rt::Vertex_handle v = cell->vertex(k);
       if (v != c->vertex(i) && v != c->vertex(j)) out.push_back(impl_->id_of(v));
@@ -318,16 +323,21 @@ int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
   return v == Rt::Vertex_handle() || impl_->rt.is_infinite(v) ? -1 : v->info();
 }
 
-RegularTriangulation::CellGraph RegularTriangulation::cell_graph() const {
+RegularTriangulation::CellGraph RegularTriangulation::cell_graph(const std::function<bool(std::size_t)>& poll) const {
   CellGraph g;
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  auto stop = [&] { return poll && ++n % kEvery == 0 && !poll(kEvery); };
   std::unordered_map<Rt::Cell_handle, int> index;
   index.reserve(impl_->rt.number_of_cells());
   for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    if (stop()) return {};
     index.emplace(c, static_cast<int>(g.cells.size()));
     g.cells.push_back(impl_->tet_of(c));
   }
   g.neighbor.resize(g.cells.size());
   for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    if (stop()) return {};
     const int i = index[c];
     for (int k = 0; k < 4; ++k) g.neighbor[i][k] = index[c->neighbor(k)];
   }
@@ -336,12 +346,74 @@ RegularTriangulation::CellGraph RegularTriangulation::cell_graph() const {
 
 // ---- PlanarDelaunay ----------------------------------------------------------
 
+namespace {
+
+// The in-plane metric of a facet in its projection: for a displacement
+// (dx, dy) of the projected coordinates within the plane of normal n (the
+// dropped coordinate `axis` follows from the plane), the squared 3D length
+// times n[axis]^2 is Q(dx, dy) = a dx^2 + b dx dy + c dy^2 with
+// a = n_a^2 + n_i^2, b = 2 n_i n_j, c = n_a^2 + n_j^2 (i, j the kept axes).
+// The coefficients are fixed doubles (the normal's rounding only tilts the
+// metric by as much); Q is positive definite since |n_a| is the largest.
+struct PlaneMetric {
+  double a = 1, b = 0, c = 1;
+};
+
+// The 2D traits of a facet's triangulation: Epick's exact orientation of the
+// projected points, and the in-circle test of the plane's metric, evaluated
+// exactly (exact::sign: interval arithmetic, then MP_Float). The in-circle
+// test is that of a fixed strictly convex lift, so the triangulation is a
+// plain Delaunay triangulation (of the points mapped linearly to the plane):
+// every inserted point is a vertex, none can be hidden, whatever the
+// rounding of the points off the plane.
+struct PlaneTraits : K {
+  PlaneMetric metric;
+  PlaneTraits() = default;
+  explicit PlaneTraits(const PlaneMetric& m) : metric(m) {}
+  struct Side_of_oriented_circle_2 {
+    PlaneMetric m;
+    CGAL::Oriented_side operator()(const K::Point_2& p, const K::Point_2& q, const K::Point_2& r,
+                                   const K::Point_2& t) const {
+      // The rows (p - t, Q(p - t)), ...: positive when t lies inside the
+      // ellipse of the metric through p, q, r counter-clockwise.
+      const int s = exact::sign([&](auto z) {
+        using NT = decltype(z);
+        const NT tx(t.x()), ty(t.y()), A(m.a), B(m.b), C(m.c);
+        const NT px = NT(p.x()) - tx, py = NT(p.y()) - ty;
+        const NT qx = NT(q.x()) - tx, qy = NT(q.y()) - ty;
+        const NT rx = NT(r.x()) - tx, ry = NT(r.y()) - ty;
+        const NT pq = A * px * px + B * px * py + C * py * py;
+        const NT qq = A * qx * qx + B * qx * qy + C * qy * qy;
+        const NT rq = A * rx * rx + B * rx * ry + C * ry * ry;
+        return px * (qy * rq - ry * qq) - py * (qx * rq - rx * qq) + pq * (qx * ry - rx * qy);
+      });
+      return s > 0 ? CGAL::ON_POSITIVE_SIDE : s < 0 ? CGAL::ON_NEGATIVE_SIDE : CGAL::ON_ORIENTED_BOUNDARY;
+    }
+  };
+  Side_of_oriented_circle_2 side_of_oriented_circle_2_object() const { return {metric}; }
+};
+
+using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, PlaneTraits>;
+using Fb2 = CGAL::Triangulation_face_base_2<PlaneTraits>;
+using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
+using Dt2 = CGAL::Delaunay_triangulation_2<PlaneTraits, Tds2>;
+
+}  // namespace
+
 struct PlanarDelaunay::Impl {
   Dt2 dt;
   std::unordered_map<int, Dt2::Vertex_handle> by_id;
   int axis = 2;
-  double ref = 0;
   Dt2::Vertex_handle last;
+
+  // A star walk around v may visit at most this many faces: the degree of a
+  // vertex is below the number of vertices, plus the infinite face(s).
+  std::size_t star_bound() const { return dt.number_of_vertices() + 2; }
+  [[noreturn]] void exceeded(const char* loop, int id) const {
+    throw LoopBoundError(std::string("PlanarDelaunay::") + loop + ": the star walk around vertex " +
+                         std::to_string(id) + " passed its bound of " + std::to_string(star_bound()) +
+                         " faces (the number of vertices of the facet plus 2)");
+  }
 };
 
 PlanarDelaunay::PlanarDelaunay() : impl_(new Impl) {}
@@ -349,17 +421,29 @@ PlanarDelaunay::~PlanarDelaunay() = default;
 PlanarDelaunay::PlanarDelaunay(PlanarDelaunay&&) noexcept = default;
 PlanarDelaunay& PlanarDelaunay::operator=(PlanarDelaunay&&) noexcept = default;
 
-void PlanarDelaunay::set_plane(int axis, double ref) {
-  impl_->axis = axis;
-  impl_->ref = ref;
+void PlanarDelaunay::set_plane(const Point3& normal) {
+  int a = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(normal[k]) > std::abs(normal[a])) a = k;
+  if (!(normal[a] != 0) || !std::isfinite(normal[a]))
+    throw std::invalid_argument("PlanarDelaunay: the plane's normal is zero or not finite");
+  // Scaled so that the largest component is 1 (the metric's scale is free).
+  const double na = 1, ni = normal[(a + 1) % 3] / std::abs(normal[a]), nj = normal[(a + 2) % 3] / std::abs(normal[a]);
+  PlaneMetric m;
+  m.a = na * na + ni * ni;
+  m.b = 2 * ni * nj;
+  m.c = na * na + nj * nj;
+  impl_->axis = a;
+  impl_->dt = Dt2(PlaneTraits(m));
+  impl_->by_id.clear();
+  impl_->last = Dt2::Vertex_handle();
 }
 
 int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
   // (x, y) keep the cyclic order of the axes so that the projection of a
   // facet whose normal points along +axis is counter-clockwise.
   const int a = impl_->axis, i = (a + 1) % 3, j = (a + 2) % 3;
-  const double h = p[a] - impl_->ref;
-  const Dt2::Weighted_point wp(K::Point_2(p[i], p[j]), -(h * h));
+  const K::Point_2 q(p[i], p[j]);
   // The walk starts at the hint's vertex when it is in this triangulation,
   // else at the last one inserted: insertions come in spatial runs, and a
   // walk from an arbitrary face costs O(sqrt n) on a large facet.
@@ -371,10 +455,9 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
     start = impl_->last->face();
   Dt2::Locate_type lt;
   int li = 0;
-  const Dt2::Face_handle f = impl_->dt.locate(wp, lt, li, start);
+  const Dt2::Face_handle f = impl_->dt.locate(q, lt, li, start);
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
-  const Dt2::Vertex_handle v = impl_->dt.insert(wp, lt, f, li);
-  if (v == Dt2::Vertex_handle() || v->is_hidden()) return -1;
+  const Dt2::Vertex_handle v = impl_->dt.insert(q, lt, f, li);
   v->info() = id;
   impl_->by_id[id] = v;
   impl_->last = v;
@@ -398,9 +481,11 @@ bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
   if (it == impl_->by_id.end() || impl_->dt.dimension() < 2) return true;
   auto f = impl_->dt.incident_faces(it->second), done = f;
   if (f == nullptr) return true;
+  const std::size_t bound = impl_->star_bound();
   std::size_t seen = 0;
   do {
     if (++seen > cap) return false;
+    if (seen > bound) impl_->exceeded("incident_triangles", id);
     if (!impl_->dt.is_infinite(f))
       out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   } while (++f != done);
@@ -415,13 +500,16 @@ void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>
   const Dt2::Vertex_handle va = ia->second, vb = ib->second;
   // Walk the star of a looking for b and the star of b looking for a, one
   // face of each in turn; the first walk to find the edge wins, and the first
-  // to end without it proves there is no edge ab.
+  // to end without it proves there is no edge ab. Each walk is bounded by
+  // star_bound() faces.
   auto fa = impl_->dt.incident_faces(va), done_a = fa;
   auto fb = impl_->dt.incident_faces(vb), done_b = fb;
   if (fa == nullptr || fb == nullptr) return;
+  const std::size_t bound = impl_->star_bound();
   Dt2::Face_handle hit;
   bool more_a = true, more_b = true;
-  while (hit == Dt2::Face_handle() && more_a && more_b) {
+  for (std::size_t n = 0; hit == Dt2::Face_handle() && more_a && more_b; ++n) {
+    if (n >= bound) impl_->exceeded("edge_triangles", a);
     if (fa->has_vertex(vb)) hit = fa;
     more_a = ++fa != done_a;
     if (hit == Dt2::Face_handle()) {

@@ -13,12 +13,23 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "wqmesh/types.h"
 
 namespace wqmesh {
+
+/// A walk or circulator loop went past its stated bound (a broken
+/// triangulation: an internal error). The message names the loop, the vertex
+/// and the bound; the mesher adds the phase (see mesh_polyhedron).
+class LoopBoundError : public std::logic_error {
+ public:
+  explicit LoopBoundError(const std::string& what) : std::logic_error(what) {}
+};
 
 /// Four vertex ids, positively oriented (orient3d > 0). The infinite vertex
 /// has id kInfinite.
@@ -94,7 +105,9 @@ class RegularTriangulation {
     std::vector<Tet> cells;
     std::vector<std::array<int, 4>> neighbor;
   };
-  CellGraph cell_graph() const;
+  /// `poll`, when given, is called with a count of cells every 1024 cells;
+  /// when it returns false the graph comes back empty (the caller stops).
+  CellGraph cell_graph(const std::function<bool(std::size_t)>& poll = {}) const;
 
  private:
   struct Impl;
@@ -105,16 +118,21 @@ class RegularTriangulation {
 /// section 4: its triangles inside the facet are the subfacets). Ids are the
 /// caller's (the 3D vertex ids).
 ///
-/// Contract: the predicates see the 3D points themselves, never rotated 2D
-/// coordinates, so that points collinear in 3D (input vertices and the points
-/// inserted on collinear input edges) are collinear here too and no zero-area
-/// triangle arises that the 3D triangulation cannot contain. Orientation is
-/// taken in the projection that drops the coordinate `axis` (the largest
-/// component of the facet's normal), which is exact; the in-circle test lifts
-/// each point with its squared 3D distance to the plane `axis = ref`, that is,
-/// a 2D regular triangulation with weight -(p[axis] - ref)^2. For points on one
-/// plane this is the Delaunay triangulation within that plane (the lift is the
-/// squared 3D norm up to an affine function of the projected coordinates).
+/// Contract: the predicates see the 3D points' own coordinates, never rotated
+/// 2D coordinates, so that points collinear in 3D (input vertices and the
+/// points inserted on collinear input edges) are collinear here too and no
+/// zero-area triangle arises that the 3D triangulation cannot contain.
+/// Orientation is taken in the projection that drops the coordinate `axis`
+/// (the largest component of the facet's normal), which is exact. The
+/// in-circle test is that of the plane's own metric in that projection (the
+/// squared 3D length of an in-plane displacement, a fixed positive definite
+/// quadratic form of the projected coordinates, see PlaneMetric in
+/// triangulation.cpp), evaluated exactly: for points on the plane this is the
+/// Delaunay triangulation within the plane, and since the lift is one fixed
+/// strictly convex function of the projected coordinates, every point
+/// inserted is a vertex whatever its rounding off the plane (a point is never
+/// hidden; issue 10: the former lift by the squared distance to the plane
+/// hid rounded points and a star walk over a hidden vertex never ended).
 class PlanarDelaunay {
  public:
   PlanarDelaunay();
@@ -124,12 +142,13 @@ class PlanarDelaunay {
   PlanarDelaunay(PlanarDelaunay&&) noexcept;
   PlanarDelaunay& operator=(PlanarDelaunay&&) noexcept;
 
-  /// The plane's projection axis (0, 1 or 2) and reference coordinate; call
-  /// before the first insert.
-  void set_plane(int axis, double ref);
+  /// The plane's normal (any length, finite, nonzero): the projection drops
+  /// its largest component, and it defines the in-plane metric. Call before
+  /// the first insert (it empties the triangulation).
+  void set_plane(const Point3& normal);
   /// Inserts the 3D point p (on the plane, up to rounding) with the caller's
   /// id. A point equal to an existing one in projection is ignored and that
-  /// one's id returned; -1 if the point is hidden (never for coplanar points).
+  /// one's id returned; otherwise returns id (p is always a vertex).
   /// `hint`: the id of a vertex near p, where the point location starts when
   /// that vertex is in this triangulation (any value is allowed).
   int insert(const Point3& p, int id, int hint = -1);
@@ -144,6 +163,8 @@ class PlanarDelaunay {
   /// edge between the points with ids a and b; none if either point is not
   /// here or ab is no edge. O(the smaller of the two degrees): the stars of a
   /// and b are walked in turn, so a fan apex costs no more than its partner.
+  /// Every star walk here is bounded by size() + 2 faces and throws
+  /// LoopBoundError past it.
   void edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const;
   std::size_t size() const;
 

@@ -112,7 +112,7 @@ TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {
 
 TEST(Triangulation, PlanarDelaunayOfASquareWithCentre) {
   PlanarDelaunay d;
-  d.set_plane(2, 0);
+  d.set_plane({0, 0, 1});
   d.insert({0, 0, 0}, 10);
   d.insert({1, 0, 0}, 11);
   d.insert({1, 1, 0}, 12);
@@ -131,7 +131,7 @@ TEST(Triangulation, PlanarDelaunayOfASquareWithCentre) {
 // or two triangles on an edge from either end, and none for a non-edge.
 TEST(Triangulation, PlanarDelaunayFanApexAndEdgeTriangles) {
   PlanarDelaunay d;
-  d.set_plane(2, 0);
+  d.set_plane({0, 0, 1});
   const int n = 200;
   d.insert({0.5, 10, 0}, 0);
   for (int i = 0; i <= n; ++i) d.insert({double(i) / n, 0, 0}, 1 + i);
@@ -170,7 +170,7 @@ TEST(Triangulation, PlanarDelaunayIsDelaunayInTheTiltedPlane) {
     p.push_back({x, y, 2 * x});
   }
   PlanarDelaunay d;
-  d.set_plane(0, 0);  // normal (-2, 0, 1): x is the largest component
+  d.set_plane({-2, 0, 1});  // x is the largest component: the projection drops it
   for (int i = 0; i < static_cast<int>(p.size()); ++i) ASSERT_EQ(d.insert(p[i], i), i);
   // Orthonormal plane coordinates: s = sqrt(5) x, t = y.
   auto st = [&](int i) { return std::array<double, 2>{{std::sqrt(5.0) * p[i][0], p[i][1]}}; };
@@ -207,7 +207,7 @@ TEST(Triangulation, PlanarDelaunayIsDelaunayInTheTiltedPlane) {
 // inserted on collinear input edges are) never make a triangle.
 TEST(Triangulation, PlanarDelaunayKeepsCollinearPointsCollinear) {
   PlanarDelaunay d;
-  d.set_plane(2, 0.25);  // plane x + y + 3z = 0.75 + ...: z is the largest normal component
+  d.set_plane({1, 1, 3});  // plane x + y + 3z = 0.75: z is the largest normal component
   int id = 0;
   std::vector<int> on_line;
   for (int k = 0; k < 9; ++k) {
@@ -223,6 +223,49 @@ TEST(Triangulation, PlanarDelaunayKeepsCollinearPointsCollinear) {
     for (int v : t) hits += std::count(on_line.begin(), on_line.end(), v) > 0;
     EXPECT_LT(hits, 3) << "triangle " << t[0] << " " << t[1] << " " << t[2];
   }
+}
+
+// Issue 10: points inserted on a tilted facet are rounded off its plane. The
+// former lift (a regular triangulation weighted by the squared distance to a
+// reference plane) hid some of them when they lay close together far from the
+// reference; a star walk over a hidden vertex never came back. Here a facet
+// 2000 long with a cluster of points 1e-6 apart at its far end, each rounded
+// off the plane: every point stays a vertex, every star walk returns, and the
+// triangles tile the convex hull (Euler: 2n - 2 - h triangles).
+TEST(Triangulation, PlanarDelaunayNeverHidesARoundedPoint) {
+  const Point3 n{{0.3, 0.55, 1}};  // plane 0.3 x + 0.55 y + z = 1000
+  auto on_plane = [&](double x, double y) { return Point3{{x, y, (1000 - n[0] * x - n[1] * y) / n[2]}}; };
+  PlanarDelaunay d;
+  d.set_plane(n);
+  std::vector<Point3> p{on_plane(0, 0), on_plane(2000, 0), on_plane(2000, 2000), on_plane(0, 2000)};
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 3000; ++i) {
+    const double x = 1500 + 1e-6 * double(rng() % 1000), y = 1500 + 1e-6 * double(rng() % 1000);
+    p.push_back(on_plane(x, y));
+  }
+  std::set<std::pair<double, double>> distinct;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    const int got = d.insert(p[i], i, i - 1);
+    if (distinct.insert({p[i][0], p[i][1]}).second) EXPECT_EQ(got, i);
+  }
+  ASSERT_EQ(d.size(), distinct.size());
+  std::vector<std::array<int, 3>> around, on_edge;
+  std::size_t degree_sum = 0;
+  for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+    d.incident_triangles(i, around);
+    degree_sum += around.size();
+    if (d.insert(p[i], -1) != i) continue;  // a duplicate in projection: not a vertex
+    EXPECT_FALSE(around.empty()) << "vertex " << i;
+    for (const auto& t : around) {
+      const int other = t[0] == i ? t[1] : t[0];
+      d.edge_triangles(i, other, on_edge);
+      EXPECT_FALSE(on_edge.empty());
+    }
+  }
+  // The hull is the square's 4 corners: 2n - 2 - 4 triangles, each seen from 3 vertices.
+  const std::size_t tris = d.triangles().size();
+  EXPECT_EQ(tris, 2 * d.size() - 6);
+  EXPECT_EQ(degree_sum, 3 * tris);
 }
 
 }  // namespace
