@@ -16,6 +16,7 @@ import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 import { serve } from '../../scripts/serve.mjs';
+import { tetVolumes } from '../node/lib/tets.mjs';
 import { browserSkipReason, launchBrowser } from './lib/browser.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
@@ -34,21 +35,6 @@ window.wqmesh = wqmesh;
 window.smokeReady = true;
 `;
 
-// Signed volume of the tets (each must be positive) and the smallest one.
-function volumes(v, t) {
-  let total = 0;
-  let smallest = Infinity;
-  for (let i = 0; i < t.length; i += 4) {
-    const p = [0, 1, 2, 3].map((k) => [v[3 * t[i + k]], v[3 * t[i + k] + 1], v[3 * t[i + k] + 2]]);
-    const a = [0, 1, 2].map((c) => p[1][c] - p[0][c]);
-    const b = [0, 1, 2].map((c) => p[2][c] - p[0][c]);
-    const d = [0, 1, 2].map((c) => p[3][c] - p[0][c]);
-    const o = (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
-    total += o;
-    smallest = Math.min(smallest, o);
-  }
-  return { total, smallest };
-}
 
 test('the package meshes in a module worker and aborts under a strict CSP', { skip, timeout: 240000 }, async () => {
   const server = await serve({ root, csp: CSP });
@@ -76,7 +62,7 @@ test('the package meshes in a module worker and aborts under a strict CSP', { sk
     assert.equal(first.stats.conforming, true);
     assert.equal(first.stats.stopped, '');
     assert.equal(first.tets.length, 4 * first.stats.tets);
-    const v = volumes(first.vertices, first.tets);
+    const v = tetVolumes(first.vertices, first.tets);
     assert.ok(v.smallest > 0, 'every tet is positively oriented');
     assert.ok(Math.abs(v.total - first.stats.volume_input) <= 1e-9 * first.stats.volume_input,
               `volume ${v.total} vs ${first.stats.volume_input}`);

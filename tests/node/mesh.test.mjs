@@ -15,6 +15,7 @@ import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 import { loadWqmesh } from '../../wasm/index.mjs';
+import { tetVolumes } from './lib/tets.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const cli = join(root, 'build/native/bin/wqmesh');
@@ -30,17 +31,9 @@ function nativeStats(model) {
 }
 
 function signedVolume(v, t) {
-  let volume = 0;
-  for (let i = 0; i < t.length; i += 4) {
-    const p = [0, 1, 2, 3].map((k) => [v[3 * t[i + k]], v[3 * t[i + k] + 1], v[3 * t[i + k] + 2]]);
-    const a = [0, 1, 2].map((c) => p[1][c] - p[0][c]);
-    const b = [0, 1, 2].map((c) => p[2][c] - p[0][c]);
-    const d = [0, 1, 2].map((c) => p[3][c] - p[0][c]);
-    const o = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
-    assert.ok(o > 0, `tet ${i / 4} is not positively oriented`);
-    volume += o / 6;
-  }
-  return volume;
+  const { total, firstBad } = tetVolumes(v, t);
+  assert.equal(firstBad, -1, `tet ${firstBad} is not positively oriented`);
+  return total;
 }
 
 for (const name of ['box.off', 'thin_wedge.off', 'spike.off', 'slit.off', 'bracket.off', 'edge_facet.off']) {

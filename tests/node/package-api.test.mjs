@@ -30,6 +30,7 @@ import { fileURLToPath } from 'node:url';
 
 import { WqmeshError, check, defaultOptions, loadWqmesh, mesh, meshSync, options, ready, writeMedit, writeTetgen,
          writeVtu } from '../../wasm/index.mjs';
+import { tetVolumes } from './lib/tets.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const cli = join(root, 'build/native/bin/wqmesh');
@@ -45,17 +46,9 @@ const example = (name) => readFileSync(join(root, 'examples/models', name));
 const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract'];
 
 function signedVolume(v, t, name) {
-  let volume = 0;
-  for (let i = 0; i < t.length; i += 4) {
-    const p = [0, 1, 2, 3].map((k) => [v[3 * t[i + k]], v[3 * t[i + k] + 1], v[3 * t[i + k] + 2]]);
-    const a = [0, 1, 2].map((c) => p[1][c] - p[0][c]);
-    const b = [0, 1, 2].map((c) => p[2][c] - p[0][c]);
-    const d = [0, 1, 2].map((c) => p[3][c] - p[0][c]);
-    const o = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) + a[2] * (b[0] * d[1] - b[1] * d[0]);
-    assert.ok(o > 0, `${name}: tet ${i / 4} is not positively oriented`);
-    volume += o / 6;
-  }
-  return volume;
+  const { total, firstBad } = tetVolumes(v, t);
+  assert.equal(firstBad, -1, `${name}: tet ${firstBad} is not positively oriented`);
+  return total;
 }
 
 function native(args) {
