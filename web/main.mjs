@@ -37,6 +37,12 @@ viewWorker.onmessage = (ev) => {
   if (error) c.reject(Object.assign(new Error(error.message), { code: error.code }));
   else c.resolve(value);
 };
+viewWorker.onerror = (ev) => {
+  ev.preventDefault();
+  status(`The view worker failed (${ev.message || 'out of memory?'}); reload the page.`, true);
+  for (const c of calls.values()) c.reject(new Error('the view worker failed'));
+  calls.clear();
+};
 function call(type, data = {}, transfer = []) {
   return new Promise((resolve, reject) => {
     const id = ++callSeq;
@@ -66,9 +72,16 @@ function setState(s) {
   $('cancel').disabled = s !== 'running';
 }
 
+// The URL follows the state; a dragged slider writes it at most every
+// 150 ms (browsers throttle, and warn about, very frequent replaceState).
+let urlTimer = 0;
 function writeUrl() {
-  const q = queryFromState(state);
-  if (q !== location.search) history.replaceState(null, '', `${location.pathname}${q}`);
+  if (urlTimer) return;
+  urlTimer = setTimeout(() => {
+    urlTimer = 0;
+    const q = queryFromState(state);
+    if (q !== location.search) history.replaceState(null, '', `${location.pathname}${q}`);
+  }, 150);
 }
 
 // ---- parameters --------------------------------------------------------------------------------

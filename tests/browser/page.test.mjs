@@ -1,13 +1,17 @@
 // wqmesh: browser tests of the web page (issue 12), with playwright-core
 // driving Debian's headless Chromium against the built page (build/web, made
 // by `node web/build.mjs`) served by scripts/serve.mjs on 127.0.0.1. Covers:
-// file input and example picker (numbers equal the package's result for the
-// same model and options), every broken model of ../shared/models (its error
+// file input, a dropped file and the example picker (numbers equal the
+// package's result for the same model and options), the overlays (one
+// sphere per protecting ball), every broken model of ../shared/models (its error
 // code and message, then a good model meshes), Cancel (cancelled within a
 // second, the next run succeeds), a rho0 change during a run restarts it,
 // the URL state round trip, the clipping plane (whole tets: the drawn faces
 // are exactly the faces of kept tets whose neighbour is not kept, computed
-// here from the package's mesh), downloads, no long task on the main thread
+// here from the package's mesh; the user's bound colours exactly the tets
+// below it; hidden rest keeps only highlighted tets; shrink draws whole
+// tets), picking by click and from the worst-tets list (the camera moves),
+// downloads, no long task on the main thread
 // during a run, no console error or warning, no request off 127.0.0.1, no
 // horizontal overflow at phone width; saves screenshots under
 // build/screenshots/. Skips when Chromium or the built page is missing
@@ -23,7 +27,7 @@ import { fileURLToPath } from 'node:url';
 import { serve } from '../../scripts/serve.mjs';
 import { browserSkipReason, CHROMIUM, CHROMIUM_ARGS } from './lib/browser.mjs';
 import { formatStat, statValue, STAT_GROUPS } from '../../web/stats.mjs';
-import { neighbours, TET_FACES } from '../../web/tetfaces.mjs';
+import { CLASS_COLOURS, neighbours, TET_FACES } from '../../web/tetfaces.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const webRoot = join(root, 'build/web');
@@ -134,7 +138,16 @@ test('file input: spike.off meshes and shows the package\'s numbers', { skip }, 
   await page.setInputFiles('input[type=file]', join(root, 'examples/models/spike.off'));
   assert.equal(await waitState(page, ['done', 'error']), 'done');
   const shown = await shownStats(page);
-  assertSameNumbers(shown, packageResult(model('spike.off'), DEFAULTS).stats, 'spike.off');
+  const spike = packageResult(model('spike.off'), DEFAULTS);
+  assertSameNumbers(shown, spike.stats, 'spike.off');
+  // Overlays: one sphere per protecting ball, one point per pumped vertex.
+  await page.check('#v-balls');
+  await page.check('#v-pumped');
+  const overlay = await page.evaluate(() => window.__wqmeshPage.viewer.groups.overlay.children.map((o) =>
+    (o.isInstancedMesh ? `balls ${o.count}` : `points ${o.geometry.getAttribute('position').count}`)));
+  const pumped = spike.weights.filter((w) => w > 0).length;
+  assert.ok(spike.stats.protecting_balls.length > 0, 'spike.off has protecting balls');
+  assert.deepEqual(overlay, [`balls ${spike.stats.protecting_balls.length}`, ...(pumped ? [`points ${pumped}`] : [])]);
   // The analysis before meshing: the report's numbers, and the page's own
   // marks agree with them on this model.
   const report = pkg.checkSync(model('spike.off'));
@@ -239,7 +252,7 @@ test('cancel within a second, a second run succeeds; a rho0 change during a run 
   const after = await page.evaluate(() => ({ seq: window.__wqmeshPage.runSeq, running: Boolean(window.__wqmeshPage.run) }));
   assert.equal(after.seq, before + 1, 'a new run started');
   assert.ok(after.running);
-  assert.match(page.url(), /rho=3/);
+  await page.waitForURL(/rho=3/);
   await page.waitForTimeout(1000);
   assert.equal(await state(page), 'running');
   const t0 = Date.now();
@@ -332,11 +345,54 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
   const second = await drawnFaces(page);
   assert.ok(second.kept < first.kept, 'fewer tets kept with the plane moved towards lo');
   checkWholeTets(second, result, expectedCut(result, [1, 0, 0], at(0.3)), 'cut 0.3');
-  assert.match(page.url(), /cut=0.3/);
-  // Picking: the worst tet from the list shows its numbers.
-  await page.click('#worst button');
+  await page.waitForURL(/cut=0\.3/);
+  // The user's bound: every drawn tet below it (and good otherwise) has the
+  // "below" colour, and no other; hidden rest: only highlighted tets are kept.
+  const colours = await page.evaluate(() => {
+    const p = window.__wqmeshPage, g = p.viewer.meshObject.geometry;
+    const col = g.getAttribute('color').array, idx = g.index.array;
+    const out = {};
+    for (let f = 0; f < idx.length / 3; ++f) out[p.viewer.faceTet[f]] = Array.from(col.slice(3 * idx[3 * f], 3 * idx[3 * f] + 3)).join(',');
+    return out;
+  });
+  const below = CLASS_COLOURS.below.join(',');
+  for (const [t, c] of Object.entries(colours)) {
+    const isBelow = result.tetClass[t] === 0 && result.minDihedral[t] < 25;
+    assert.equal(c === below, isBelow, `tet ${t} (${result.minDihedral[t].toFixed(2)} deg, class ${result.tetClass[t]}): colour ${c}`);
+  }
+  const seqHide = await page.evaluate(() => Number(document.body.dataset.viewSeq));
+  await page.selectOption('#v-rest', 'hide');
+  await page.waitForFunction((s) => Number(document.body.dataset.viewSeq) > s, seqHide);
+  let highlighted = 0;
+  for (let t = 0; t < result.tets.length / 4; ++t) {
+    let x = 0;
+    for (let k = 0; k < 4; ++k) x += result.vertices[3 * result.tets[4 * t + k]] / 4;
+    if (x <= at(0.3) && (result.tetClass[t] !== 0 || result.minDihedral[t] < 25)) ++highlighted;
+  }
+  assert.equal(await page.evaluate(() => window.__wqmeshPage.lastView.keptTets), highlighted, 'hidden rest: kept = highlighted');
+  await page.selectOption('#v-rest', 'show');
+  // Shrink below 1: all four faces of every drawn tet.
+  const seqShrink = await page.evaluate(() => Number(document.body.dataset.viewSeq));
+  await page.$eval('#v-shrink', (e) => { e.value = '0.7'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  await page.waitForFunction((s) => Number(document.body.dataset.viewSeq) > s + 0 &&
+    window.__wqmeshPage.lastView.faces === 4 * window.__wqmeshPage.lastView.drawnTets, seqShrink);
+  await page.$eval('#v-shrink', (e) => { e.value = '1'; e.dispatchEvent(new Event('input', { bubbles: true })); });
+  // Picking: a click on the part shows a tet's numbers; the worst tet from
+  // the list moves the camera to it.
+  const box2 = await page.locator('#view canvas').boundingBox();
+  await page.mouse.click(box2.x + box2.width * 0.35, box2.y + box2.height * 0.5);
   await page.waitForSelector('#pick dl');
+  const picked = Number((await page.textContent('#pick dd')).trim());
+  assert.ok(Number.isInteger(picked) && picked >= 0 && picked < result.tets.length / 4, `picked tet ${picked}`);
+  const target0 = await page.evaluate(() => window.__wqmeshPage.viewer.controls.target.toArray());
+  await page.click('#worst button');
+  await page.waitForFunction((t) => window.__wqmeshPage.viewer.controls.target.toArray().join() !== t.join(), target0);
+  const worstTet = Number((await page.textContent('#worst button')).match(/tet (\d+)/)[1]);
+  await page.waitForFunction((t) => document.querySelector('#pick dd')?.textContent === String(t), worstTet);
   assert.match(await page.textContent('#pick'), /smallest dihedral/);
+  let minD = Infinity;
+  for (const d of result.minDihedral) minD = Math.min(minD, d);
+  assert.equal(result.minDihedral[worstTet], minD, 'the first of the worst tets is the worst');
   // Downloads.
   for (const [kind, pattern] of [['medit', /^MeshVersionFormatted/], ['vtu', /<VTKFile/], ['stats', /"tets"/]]) {
     const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`[data-download=${kind}]`)]);
