@@ -299,7 +299,25 @@ test('the VTU has the same arrays on every run, and TetGen gets .edge', async ()
   assert.equal(count(t.ele), pumped.stats.tets);
   assert.equal(count(t.face), pumped.boundary.length / 3);
   assert.ok(count(t.edge) >= 15, 'spike has at least its 15 input edges');
-  // Chains are oriented: a subsegment that ends inside an input edge is followed by one that begins there.
+  // Chains are oriented: at a vertex on exactly two subsegments (inside an
+  // input edge), one ends and the other begins (TetGen's -r wants this).
+  const rows = t.edge.trim().split('\n').slice(1).map((l) => l.trim().split(/\s+/).map(Number));
+  assert.equal(rows.length, count(t.edge));
+  const starts = new Map();
+  const ends = new Map();
+  for (const [, a, b, marker] of rows) {
+    assert.equal(marker, 1);
+    starts.set(a, (starts.get(a) ?? 0) + 1);
+    ends.set(b, (ends.get(b) ?? 0) + 1);
+  }
+  let inside = 0;
+  for (const v of new Set([...starts.keys(), ...ends.keys()])) {
+    if ((starts.get(v) ?? 0) + (ends.get(v) ?? 0) !== 2) continue;
+    ++inside;
+    assert.equal(starts.get(v), 1, `vertex ${v}: one subsegment begins there`);
+    assert.equal(ends.get(v), 1, `vertex ${v}: one subsegment ends there`);
+  }
+  assert.ok(inside > 0, 'spike has input edges split into several subsegments');
   await assert.rejects(writeVtu({ ...pumped, tets: new Uint32Array([0, 1, 2, 999999]), tetClass: new Uint8Array(1) }),
                        (e) => e instanceof TypeError && /not a vertex index/.test(e.message));
   await assert.rejects(writeVtu(null), TypeError);
