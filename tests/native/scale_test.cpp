@@ -208,5 +208,28 @@ TEST(Scale, ValidInputsNeverFinishWithNoTet) {
   }
 }
 
+// --max-size is scaled in with the input: a 2^40 cube with max_size 0.3 * 2^40
+// is the unit cube with max_size 0.3, scaled.
+TEST(Scale, MaxSizeIsScaledWithTheInput) {
+  const std::string unit_off = box_off(0, 1), big_off = box_off(0, std::ldexp(1.0, 40));
+  const CheckResult unit = check_polyhedron(unit_off.data(), unit_off.size());
+  const CheckResult big = check_polyhedron(big_off.data(), big_off.size());
+  ASSERT_TRUE(unit.valid && big.valid);
+  MeshOptions o;
+  o.max_size = 0.3;
+  const MeshResult u = mesh_polyhedron(unit.plc, unit.analysis, o);
+  o.max_size = std::ldexp(0.3, 40);
+  const MeshResult b = mesh_polyhedron(big.plc, big.analysis, o);
+  ASSERT_GT(u.mesh.tets.size(), 18u);  // the bound refined it
+  ASSERT_EQ(b.mesh.tets, u.mesh.tets);
+  ASSERT_EQ(b.mesh.vertices.size(), u.mesh.vertices.size());
+  for (std::size_t v = 0; v < u.mesh.vertices.size(); ++v)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(b.mesh.vertices[v][c], std::ldexp(u.mesh.vertices[v][c], 40));
+  for (std::size_t v = 0; v < u.mesh.weights.size(); ++v)
+    EXPECT_EQ(b.mesh.weights[v], std::ldexp(u.mesh.weights[v], 80));
+  for (std::size_t v = 0; v < u.nearest_neighbour.size(); ++v)
+    EXPECT_EQ(b.nearest_neighbour[v], std::ldexp(u.nearest_neighbour[v], 40));
+}
+
 }  // namespace
 }  // namespace wqmesh

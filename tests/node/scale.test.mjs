@@ -93,7 +93,7 @@ function wasm(off, options = {}) {
     const r = wqmesh.mesh(bytes, options);
     out.stats = r.stats;
     out.vertices = Array.from(r.vertices);
-    out.tets = r.tets.length / 4;
+    out.result = r;
   } catch (e) {
     out.error = e.code ?? e.kind;
     out.message = e.message;
@@ -239,7 +239,7 @@ test('a run stopped by the vertex limit gives the same tets, violations and volu
   for (const k of SAME) assertClose(n.stats[k], w.stats[k], `stopped run: ${k}, native vs wasm`);
   // volume_mesh is the volume of the tets the run returned.
   const v = w.vertices;
-  const r = wqmesh.mesh(new TextEncoder().encode(off), { maxVertices: limit });
+  const r = w.result;
   let volume = 0;
   for (let i = 0; i < r.tets.length; i += 4) {
     const p = [0, 1, 2, 3].map((q) => [0, 1, 2].map((c) => v[3 * r.tets[i + q] + c]));
