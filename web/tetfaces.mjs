@@ -76,7 +76,18 @@ export const CLASS_COLOURS = {
   below: [245, 210, 0],          // below the user's dihedral bound (and good otherwise)
   selected: [0, 170, 120],       // the picked tet
 };
-const BY_CLASS = [CLASS_COLOURS.good, CLASS_COLOURS.skinny, CLASS_COLOURS.sliver, CLASS_COLOURS.violation];
+/**
+ * A colour as the vertex-colour bytes that show it: three.js takes vertex
+ * colours as linear and writes sRGB, so the sRGB bytes are linearised first.
+ */
+export function linearBytes(rgb) {
+  return rgb.map((c) => {
+    const x = c / 255;
+    return Math.round(255 * (x <= 0.04045 ? x / 12.92 : ((x + 0.055) / 1.055) ** 2.4));
+  });
+}
+const LINEAR = Object.fromEntries(Object.entries(CLASS_COLOURS).map(([k, v]) => [k, linearBytes(v)]));
+const BY_CLASS = [LINEAR.good, LINEAR.skinny, LINEAR.sliver, LINEAR.violation];
 
 /**
  * What to draw. `mesh`: { vertices (Float64Array), tets, tetClass, minDihedral,
@@ -158,8 +169,8 @@ export function extract(mesh, view) {
       positions[p] = V[v] - ox; positions[p + 1] = V[v + 1] - oy; positions[p + 2] = V[v + 2] - oz;
       cx += positions[p]; cy += positions[p + 1]; cz += positions[p + 2];
     }
-    const col = t === view.selected ? CLASS_COLOURS.selected
-      : C[t] !== 0 ? BY_CLASS[C[t]] : D[t] < bound ? CLASS_COLOURS.below : CLASS_COLOURS.good;
+    const col = t === view.selected ? LINEAR.selected
+      : C[t] !== 0 ? BY_CLASS[C[t]] : D[t] < bound ? LINEAR.below : LINEAR.good;
     for (let k = 0; k < 4; ++k) {
       const p = 12 * d + 3 * k;
       centroids[p] = cx / 4; centroids[p + 1] = cy / 4; centroids[p + 2] = cz / 4;

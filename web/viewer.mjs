@@ -38,8 +38,8 @@ export class Viewer {
     this.camera.position.set(2, -3, 2);
     this.camera.up.set(0, 0, 1);
     this.scene.add(this.camera);
-    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.2));
-    const light = new THREE.DirectionalLight(0xffffff, 1.4);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0xa0acb8, 1.7));
+    const light = new THREE.DirectionalLight(0xffffff, 1.5);
     light.position.set(1, 2, 3);
     this.camera.add(light);
     this.controls = new OrbitControls(this.camera, this.canvas);

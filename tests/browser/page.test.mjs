@@ -27,7 +27,7 @@ import { fileURLToPath } from 'node:url';
 import { serve } from '../../scripts/serve.mjs';
 import { browserSkipReason, CHROMIUM, CHROMIUM_ARGS } from './lib/browser.mjs';
 import { formatStat, statValue, STAT_GROUPS } from '../../web/stats.mjs';
-import { CLASS_COLOURS, neighbours, TET_FACES } from '../../web/tetfaces.mjs';
+import { CLASS_COLOURS, linearBytes, neighbours, TET_FACES } from '../../web/tetfaces.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const webRoot = join(root, 'build/web');
@@ -355,7 +355,7 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
     for (let f = 0; f < idx.length / 3; ++f) out[p.viewer.faceTet[f]] = Array.from(col.slice(3 * idx[3 * f], 3 * idx[3 * f] + 3)).join(',');
     return out;
   });
-  const below = CLASS_COLOURS.below.join(',');
+  const below = linearBytes(CLASS_COLOURS.below).join(',');
   for (const [t, c] of Object.entries(colours)) {
     const isBelow = result.tetClass[t] === 0 && result.minDihedral[t] < 25;
     assert.equal(c === below, isBelow, `tet ${t} (${result.minDihedral[t].toFixed(2)} deg, class ${result.tetClass[t]}): colour ${c}`);
