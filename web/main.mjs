@@ -390,12 +390,17 @@ function showNumbers() {
 function showHistogram() {
   const box = $('histogram');
   const h = page.hist, p = page.prevHist;
+  if (!h.counts.some((c) => c > 0)) {
+    box.replaceChildren(el('p', { class: 'hint', text: 'This run made no tets.' }));
+    return;
+  }
   const n = h.counts.length, W = 360, H = 120, pad = 18, bw = (W - 2) / n;
   const total = (c) => c.reduce((a, b) => a + b, 0) || 1;
-  const tn = total(h.counts), tp = p ? total(p.counts) : 1;
+  const tn = total(h.counts), tp = p ? total(p.counts) : 1;  // (total() is at least 1: no division by 0)
   let max = 0;
   h.counts.forEach((c) => { max = Math.max(max, c / tn); });
   if (p) p.counts.forEach((c) => { max = Math.max(max, c / tp); });
+  max = max || 1;
   const ns = 'http://www.w3.org/2000/svg';
   const svg = document.createElementNS(ns, 'svg');
   svg.setAttribute('viewBox', `0 0 ${W} ${H + pad}`);

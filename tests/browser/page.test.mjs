@@ -204,6 +204,17 @@ test('example picker, URL round trip, previous run side by side', { skip }, asyn
   await page.context().close();
 });
 
+test('a run stopped by the vertex limit before meshing: done, stopped "limit", its message, no tets drawn', { skip }, async () => {
+  const page = await open('?example=spike.off&maxVertices=10');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  const stats = packageResult(model('spike.off'), { ...DEFAULTS, maxVertices: 10 }).stats;
+  assert.equal(stats.stopped, 'limit');
+  assertSameNumbers(await shownStats(page), stats, 'spike.off maxVertices 10');
+  assert.ok((await page.textContent('#status')).includes(stats.stop_message), 'the stop message is shown');
+  assert.match(await page.textContent('#histogram'), /no tets/);
+  await page.context().close();
+});
+
 test('broken models: error code and message, highlight, then a good model meshes', { skip: skip || (!existsSync(shared) && '../shared/models is absent') }, async () => {
   const page = await open();
   for (const name of BROKEN) {
