@@ -591,7 +591,10 @@ $('reset').addEventListener('click', () => {
   parametersChanged();
   refreshView();
 });
-$('file').addEventListener('change', (ev) => loadFile(ev.target.files[0]));
+$('file').addEventListener('change', (ev) => {
+  loadFile(ev.target.files[0]);
+  ev.target.value = '';  // the same file again is a change too
+});
 $('example').addEventListener('change', (ev) => { if (ev.target.value) loadExample(ev.target.value); });
 document.querySelectorAll('[data-download]').forEach((b) => b.addEventListener('click', () => download(b.dataset.download)));
 let dragDepth = 0;

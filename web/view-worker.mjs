@@ -8,7 +8,7 @@
 //   tet      -> the numbers of one tet
 //   write    -> a file of the mesh, through the package's writers
 // SPDX-License-Identifier: GPL-3.0-or-later
-import { readSurface, triangulate, features, locate } from './surface.mjs';
+import { cross, dot, features, locate, readSurface, sub, triangulate } from './surface.mjs';
 import { neighbours, extract, dihedralHistogram, worstTets, gridMesh, TET_FACES } from './tetfaces.mjs';
 
 let mesh = null;    // { vertices, tets, tetClass, minDihedral, radiusEdge, weights, nb, stats, ... }
@@ -112,10 +112,6 @@ function extractMessage({ view }) {
     transfer: [g.positions.buffer, g.centroids.buffer, g.colours.buffer, g.index.buffer, g.faceTet.buffer, g.edges.buffer],
   };
 }
-
-const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 
 /** Circumcenter and R/l (circumradius over shortest edge, unweighted) of four points. */
 function circum(p) {
