@@ -11,7 +11,7 @@
 // here from the package's mesh; the user's bound colours exactly the tets
 // below it; hidden rest keeps only highlighted tets; shrink draws whole
 // tets), picking by click and from the worst-tets list (the camera moves),
-// downloads, no long task on the main thread
+// keyboard use (Tab, arrows, Enter; visible focus), downloads, no long task on the main thread
 // during a run, no console error or warning, no request off 127.0.0.1, no
 // horizontal overflow at phone width; saves screenshots under
 // build/screenshots/. Skips when Chromium or the built page is missing
@@ -201,6 +201,30 @@ test('example picker, URL round trip, previous run side by side', { skip }, asyn
   const shown2 = await shownStats(again);
   for (const k of STAT_KEYS) assert.equal(shown2[k], shown[k], `round trip: ${k}`);
   await again.context().close();
+  await page.context().close();
+});
+
+test('keyboard: pick an example and mesh without the mouse; focus is visible', { skip }, async () => {
+  const page = await open();
+  await page.waitForFunction(() => document.querySelectorAll('#example option').length > 1);
+  await page.uncheck('#auto');
+  // Tab until the example picker has the focus, then choose with the arrows.
+  let steps = 0;
+  while (await page.evaluate(() => document.activeElement.id) !== 'example' && steps++ < 20) await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.id), 'example');
+  const outline = await page.evaluate(() => getComputedStyle(document.activeElement).outlineStyle);
+  assert.notEqual(outline, 'none', 'the focused control shows an outline');
+  const names = await page.$$eval('#example option', (o) => o.map((x) => x.value));
+  await page.keyboard.press('ArrowDown');
+  await page.waitForFunction((n) => document.body.dataset.input === n, names[1]);
+  assert.equal(await state(page), 'idle', 'automatic runs are off');
+  // Tab to the Mesh button and press Enter.
+  steps = 0;
+  while (await page.evaluate(() => document.activeElement.dataset.action) !== 'mesh' && steps++ < 30) await page.keyboard.press('Tab');
+  assert.equal(await page.evaluate(() => document.activeElement.dataset.action), 'mesh');
+  await page.keyboard.press('Enter');
+  assert.equal(await waitState(page, ['done', 'error']), 'done');
+  assert.equal(await page.textContent('[data-stat=tets]'), String(packageResult(model(names[1]), DEFAULTS).stats.tets));
   await page.context().close();
 });
 
