@@ -189,14 +189,17 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
       is_reflex[i] = 1;
     }
   // Bounded work: a polygon that needs more orientation tests than this is
-  // rejected rather than left to run for minutes.
-  long long budget = 60'000'000;
+  // rejected rather than left to run for minutes (README, Limits).
+  long long budget = kMaxEarTests;
   auto is_ear = [&](int i) {
     budget -= 1 + static_cast<long long>(reflex.size());
     if (budget < 0)
       throw InputError(InputErrorKind::too_large,
-                       "a polygon of " + std::to_string(n) +
-                           " vertices is too complex to triangulate");
+                       "a polygon of " + std::to_string(n) + " vertices (" +
+                           std::to_string(reflex.size()) +
+                           " of them reflex) is too complex to triangulate: beyond the ear "
+                           "clipping's budget of " +
+                           std::to_string(kMaxEarTests) + " vertex-in-ear tests per polygon");
     if (!convex(i)) return false;
     const int a = prev[i], c = next[i];
     for (int r : reflex) {
@@ -335,6 +338,31 @@ struct PairTester {
 void check_self_intersections(const std::vector<Point3>& pts,
                               const std::vector<std::array<int, 3>>& tris,
                               const std::function<std::string(int)>& describe) {
+  // Bounded work: so many overlapping boxes only come from pathological
+  // inputs (huge fans of slivers, a vertex of very high degree); reject them
+  // rather than run for hours (README, Limits).
+  const long long kBudget = kMaxOverlappingPairs;
+  const std::string budget_name = "the self-intersection test's budget of " +
+                                  std::to_string(kBudget) +
+                                  " pairs of triangles with overlapping bounding boxes";
+  // Triangles at a common vertex always have overlapping boxes: count those
+  // pairs first, so that a vertex of huge degree is refused at once.
+  {
+    std::vector<long long> degree(pts.size(), 0);
+    for (const auto& t : tris)
+      for (int v : t) ++degree[v];
+    long long pairs = 0, worst = 0;
+    std::size_t worst_vertex = 0;
+    for (std::size_t v = 0; v < degree.size(); ++v) {
+      pairs += degree[v] * (degree[v] - 1) / 2;
+      if (degree[v] > worst) worst = degree[v], worst_vertex = v;
+    }
+    if (pairs > kBudget)
+      throw InputError(InputErrorKind::too_large,
+                       "the triangles at common vertices alone make " + std::to_string(pairs) +
+                           " pairs (the vertex " + coords(pts[worst_vertex]) + " is in " +
+                           std::to_string(worst) + " triangles), beyond " + budget_name);
+  }
   std::vector<Box> boxes;
   boxes.reserve(tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t) {
@@ -349,14 +377,11 @@ void check_self_intersections(const std::vector<Point3>& pts,
     boxes.emplace_back(lo, hi, static_cast<int>(t));
   }
   PairTester tester{pts, tris, describe};
-  // Bounded work: so many overlapping boxes only come from pathological
-  // inputs (e.g. huge fans of slivers); reject them rather than run for hours.
-  long long budget = 200'000'000;
+  long long budget = kBudget;
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
     if (--budget < 0)
-      throw InputError(InputErrorKind::too_large,
-                       "too many pairs of faces with overlapping bounding boxes to check for "
-                       "self-intersections");
+      throw InputError(InputErrorKind::too_large, "more pairs of triangles to check for "
+                                                  "self-intersections than " + budget_name);
     tester.test(x.info(), y.info());
   });
 }

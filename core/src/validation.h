@@ -13,6 +13,14 @@
 
 namespace wqmesh::validation {
 
+/// Work budgets (README, Limits): beyond them the input is refused with
+/// InputError(too_large) naming the budget. Ear clipping of one polygon: at
+/// most this many vertex-in-ear tests (1 + the live reflex vertices per ear
+/// candidate); the self-intersection test: at most this many candidate pairs
+/// of triangles with overlapping bounding boxes.
+constexpr long long kMaxEarTests = 60'000'000;
+constexpr long long kMaxOverlappingPairs = 200'000'000;
+
 /// A power of two s by which coordinates of magnitude at most `big` are
 /// scaled exactly before rounded products (normals), so that they neither
 /// overflow nor underflow: 2^-ilogb(big), i.e. big * s in [1, 2), but at most
@@ -57,7 +65,9 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
 /// triangles sharing one vertex must not meet anywhere else; others must be
 /// disjoint. Candidate pairs come from CGAL::box_intersection_self_d on the
 /// bounding boxes. `describe(t)` names triangle t in messages (its face, line).
-/// Throws InputError(too_large) beyond 2e8 candidate pairs.
+/// Throws InputError(too_large) beyond kMaxOverlappingPairs candidate pairs,
+/// at once (before any box is built) when the pairs of triangles at common
+/// vertices, which always overlap, are already more.
 void check_self_intersections(const std::vector<Point3>& pts,
                               const std::vector<std::array<int, 3>>& tris,
                               const std::function<std::string(int)>& describe);
