@@ -494,7 +494,7 @@ async function refreshView() {
       await viewer.nextFrame();
       const t2 = performance.now();
       page.lastView = { ms: t2 - t0, workerMs: x.ms, mainMs: t2 - t1, drawnTets: x.drawnTets, keptTets: x.keptTets,
-                        faces: x.index.length / 3, faceTet: null };
+                        faces: x.index.length / 3 };
       document.body.dataset.drawnTets = String(x.drawnTets);
       document.body.dataset.keptTets = String(x.keptTets);
       document.body.dataset.viewSeq = String(Number(document.body.dataset.viewSeq || 0) + 1);

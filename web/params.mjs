@@ -87,8 +87,3 @@ export function meshOptions(s) {
   for (const p of RUN_PARAMS) o[p.key] = s[p.key];
   return o;
 }
-
-/** True when two states ask for the same run (same input, same parameters). */
-export function sameRun(a, b) {
-  return RUN_PARAMS.every((p) => a[p.key] === b[p.key]);
-}
