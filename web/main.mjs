@@ -439,7 +439,8 @@ function showWorst(list) {
   ol.replaceChildren();
   const names = ['good', 'skinny', 'sliver', 'violation'];
   for (const w of list) {
-    const b = el('button', { type: 'button', text: `tet ${w.tet}: ${w.minDihedral.toFixed(2)} deg, ${names[w.cls] || w.cls}` });
+    const deg = w.minDihedral < 1 ? w.minDihedral.toPrecision(2) : w.minDihedral.toFixed(2);
+    const b = el('button', { type: 'button', text: `tet ${w.tet}: ${deg} deg, ${names[w.cls] || w.cls}` });
     b.addEventListener('click', () => pickTet(w.tet, true));
     ol.append(el('li', {}, b));
   }
@@ -456,7 +457,7 @@ async function pickTet(tet, move) {
   row('tet', String(info.tet));
   row('vertices', info.vertices.join(', '));
   info.points.forEach((p, i) => row(`v${i}`, p.map((x) => x.toPrecision(6)).join(', ')));
-  row('smallest dihedral', `${info.minDihedral.toFixed(3)} deg`);
+  row('smallest dihedral', `${info.minDihedral < 1 ? info.minDihedral.toPrecision(3) : info.minDihedral.toFixed(3)} deg`);
   row(info.radiusEdgeWeighted ? 'R/l (orthoradius if weighted)' : 'R/l', info.radiusEdge.toFixed(3));
   row('class', info.className);
   if (info.near) row('why near', info.near);

@@ -128,6 +128,25 @@ function circum(p) {
   return { center: [a[0] + off[0], a[1] + off[1], a[2] + off[2]], ratio: R / l };
 }
 
+/** N(v) for each of the given vertices: the shortest mesh edge at v (one pass over the tets). */
+function nearestOver(ids) {
+  const T = mesh.tets, V = mesh.vertices;
+  const best = ids.map(() => Infinity);
+  for (let t = 0; t < T.length; t += 4) {
+    for (let a = 0; a < 4; ++a) {
+      const k = ids.indexOf(T[t + a]);
+      if (k < 0) continue;
+      for (let b = 0; b < 4; ++b) {
+        if (b === a) continue;
+        const u = 3 * T[t + a], w = 3 * T[t + b];
+        const d = Math.hypot(V[u] - V[w], V[u + 1] - V[w + 1], V[u + 2] - V[w + 2]);
+        if (d < best[k]) best[k] = d;
+      }
+    }
+  }
+  return best;
+}
+
 const CLASS_NAMES = ['good', 'skinny, near a small input angle', 'sliver, near a small input angle', 'violation'];
 
 function tetMessage({ tet, stats }) {
@@ -137,21 +156,26 @@ function tetMessage({ tet, stats }) {
   const c = circum(pts);
   const cls = mesh.tetClass[tet];
   const ratio = mesh.radiusEdge ? mesh.radiusEdge[tet] : c.ratio;
-  // Why near: the protecting ball that holds its circumcenter, or the
-  // nearest ball to it (the core's rule also accepts a vertex close to a
-  // ball, README "Every output tet has a class").
+  // Why near, by the core's rule (README, "Every output tet has a class"):
+  // its circumcenter on or inside a protecting ball (c, r), or a vertex v
+  // with |v - c|^2 <= (2r)^2 + N(v)^2/9, N(v) the distance from v to its
+  // nearest other vertex. Here the circumcenter is the unweighted one and
+  // N(v) is taken over the mesh edges at v (one pass over the tets), so for
+  // pumped vertices the reason shown may differ from the core's.
   let near = '';
   const balls = (stats && stats.protecting_balls) || [];
   if (cls === 1 || cls === 2) {
-    let best = -1, bestD = Infinity;
-    balls.forEach((b, i) => {
-      const d = Math.hypot(...sub(c.center, b.center)) / b.radius;
-      if (d < bestD) { bestD = d; best = i; }
-    });
-    if (best >= 0) {
-      const b = balls[best];
-      near = `${bestD <= 1 ? 'circumcenter inside' : 'a vertex near'} protecting ball ${best} ` +
-             `(${b.vertex_ball ? 'vertex ball of a sharp vertex' : 'ball of a sharp edge'}, radius ${b.radius.toPrecision(3)})`;
+    const name = (i) => `protecting ball ${i} (${balls[i].vertex_ball ? 'vertex ball of a sharp vertex' : 'ball of a sharp edge'}, ` +
+                        `radius ${balls[i].radius.toPrecision(3)})`;
+    const inside = balls.findIndex((b) => Math.hypot(...sub(c.center, b.center)) <= b.radius);
+    if (inside >= 0) near = `circumcenter inside ${name(inside)}`;
+    else {
+      const nn = nearestOver(ids);
+      for (let k = 0; k < 4 && !near; ++k) {
+        const j = balls.findIndex((b) => dot(sub(pts[k], b.center), sub(pts[k], b.center)) <= 4 * b.radius ** 2 + nn[k] ** 2 / 9);
+        if (j >= 0) near = `vertex ${ids[k]} within (2r)^2 + N(v)^2/9 of ${name(j)}`;
+      }
+      if (!near) near = 'near by the weighted rule of the core (not found from the unweighted circumcenter)';
     }
   }
   const g = pts.reduce((s, p) => s.map((x, k) => x + p[k] / 4), [0, 0, 0]);

@@ -246,7 +246,21 @@ export class Viewer {
     const ndc = new THREE.Vector2(((clientX - r.left) / r.width) * 2 - 1, -((clientY - r.top) / r.height) * 2 + 1);
     const ray = new THREE.Raycaster();
     ray.setFromCamera(ndc, this.camera);
-    const hit = ray.intersectObject(this.meshObject, false).find((h) => h.face);
+    let target = this.meshObject;
+    const s = this.shrink.value;
+    if (s < 1) {
+      // The shader shrinks the tets: pick on the positions as drawn.
+      const g = this.meshObject.geometry;
+      const p = g.getAttribute('position').array, c = g.getAttribute('tetCentroid').array;
+      const q = new Float32Array(p.length);
+      for (let i = 0; i < p.length; ++i) q[i] = c[i] + (p[i] - c[i]) * s;
+      const shrunk = new THREE.BufferGeometry();
+      shrunk.setAttribute('position', new THREE.BufferAttribute(q, 3));
+      shrunk.setIndex(g.index);
+      target = new THREE.Mesh(shrunk, this.opaque);
+    }
+    const hit = ray.intersectObject(target, false).find((h) => h.face);
+    if (target !== this.meshObject) target.geometry.dispose();
     return hit ? this.faceTet[hit.faceIndex] : -1;
   }
 
