@@ -245,7 +245,13 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
       }
     }
     const auto t0 = clock::now();
-    step();
+    // A walk past its stated bound (LoopBoundError, triangulation.h) is an
+    // internal error: named with the phase, the loop and the vertex.
+    try {
+      step();
+    } catch (const LoopBoundError& e) {
+      throw std::runtime_error(std::string("internal error in ") + name + ": " + e.what());
+    }
     PhaseStats s;
     s.name = name;
     s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
@@ -271,6 +277,7 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
   phases.push_back(s);
   r.phases = phases;
+  if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
   if (r.stopped == "limit" && r.stop_message.empty()) {
     char text[200];
     std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,

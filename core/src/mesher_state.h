@@ -180,6 +180,39 @@ class Mesher {
     if (stop_reason_.empty()) stop_reason_ = "cancelled";
   }
   const std::string& stop_reason() const { return stop_reason_; }
+  /// Why the run stopped in words, when the mesher knows (for "stalled").
+  const std::string& stop_message() const { return stop_message_; }
+
+  // ---- stops that reach every step (beyond the paper, issue 10) ----
+  // Work is counted in units: one per queue element looked at, per cell of
+  // an inserted vertex's star, per feature or walk of an insertion's upkeep,
+  // per cell of a PUMP weight change, per element of a whole-mesh scan. Every
+  // unit is bounded by the size of a star (see the loop bounds in
+  // triangulation.cpp). poll() counts units, and at least every kPollWork
+  // units (and every 256 steps) calls the progress callback, so that a
+  // cancel, the vertex limit or the memory cap (the wasm callback) takes
+  // effect within kPollWork units whatever the mesher does.
+  static constexpr std::uint64_t kPollWork = 256;
+  /// Counts `units` of work; `in_step`: work of the current step (a step is
+  /// one insertion with its upkeep, one queue element, one rule-3 or rule-7
+  /// candidate, one PUMP vertex), which the watchdog bounds: a step past
+  /// MeshOptions::stall_work units ends the run with stopped = "stalled".
+  /// Whole-mesh scans count with in_step = false (they are bounded by the
+  /// mesh's size). Returns false once the run must stop. Never throws, unless
+  /// the progress callback does (the wasm memory cap): it is never called
+  /// from inside a CGAL insertion.
+  bool poll(std::uint64_t units, bool in_step = true);
+  /// INITIALIZE's insertions are steps too: polls, and says whether the
+  /// run was cancelled or stalled (INITIALIZE then ends early; the vertex
+  /// limit never stops it: a limit below its count is refused beforehand).
+  bool interrupted() {
+    step_done();
+    poll(1);
+    return !stop_reason_.empty() && stop_reason_ != "limit";
+  }
+  /// A step ended: the watchdog starts again.
+  void step_done() { step_work_ = 0; }
+  std::uint64_t work() const { return work_; }
   std::vector<PhaseStats> phases;
   std::size_t slivers_before_pump = 0, pumped_vertices = 0;
   /// How many points each rule (1..7) inserted; [0]: INITIALIZE.
@@ -248,8 +281,16 @@ class Mesher {
   bool rule7_pass();
   bool check_tet(const Tet& t, CellRef ref);
   void make_protecting_balls();  ///< end of CONFORM (section 4.3)
-  bool tick();  ///< progress; false when cancelled
-  std::vector<char> interior_labels(const RegularTriangulation::CellGraph& g) const;
+  /// A step (an insertion by a rule, a PUMP vertex) is done: counts it, ends
+  /// the watchdog's step, polls (a progress call at least every 256 steps).
+  /// False once the run must stop.
+  bool tick();
+  /// 1 for the cells of g inside the polyhedron. `scan`: poll while
+  /// labelling (a phase's scan); the labels are then unusable if it stops.
+  std::vector<char> interior_labels(const RegularTriangulation::CellGraph& g, bool scan = false);
+  /// cell_graph() polling every kPollWork cells (a phase's scan); empty if
+  /// the run stops meanwhile.
+  RegularTriangulation::CellGraph scan_cell_graph();
 
   const Domain& dom_;
   const MeshOptions& opt_;
@@ -277,12 +318,14 @@ class Mesher {
   std::deque<Subfacet> facet_queue_;
   std::deque<std::pair<Tet, CellRef>> tet_queue_;
   std::size_t inserted_ = 0, steps_ = 0;
+  std::uint64_t work_ = 0, next_poll_ = kPollWork, step_work_ = 0;
+  void report_progress();
   /// How often a subfacet (or a tet, by three of its vertices) was looked at
   /// again after its split was deferred to another feature; bounded by
   /// kRetries so that no feature keeps the refinement busy forever.
   std::unordered_map<Tri, int, TriHash> retries_;
   static constexpr int kRetries = 16;
-  std::string stop_reason_;
+  std::string stop_reason_, stop_message_;
   friend class Pump;
 };
 

@@ -218,6 +218,7 @@ void Mesher::initialize() {
     ins.on = On::vertex;
     ins.element = v;
     ins.hint = v - 1;
+    if (interrupted()) return;
     if (insert(ins) != v)
       throw std::runtime_error("INITIALIZE: input vertex " + std::to_string(v) + " could not be inserted");
   }
@@ -235,6 +236,7 @@ void Mesher::initialize() {
       ins.element = e;
       ins.ball = u;
       ins.hint = u;
+      if (interrupted()) return;
       const int id = insert(ins, 0);
       if (id < 0) throw std::runtime_error("INITIALIZE: a vertex-ball point could not be inserted");
       ball_point[{u, e}] = id;

@@ -57,15 +57,26 @@ Pump::Pump(Mesher& m) : m_(m), tri_(m.tri_) {}
 void Pump::prepare() {
   // N(v), the nearest-neighbour distance in the unweighted Del V at the end
   // of REFINE; it bounds the weights and does not change when they do.
+  // A scan of the whole mesh: it polls, and stops early (m_.stopped()) when
+  // the run must stop; run() then does nothing more.
   m_.nn_.resize(m_.verts_.size());
-  for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
-  const RegularTriangulation::CellGraph g = tri_.cell_graph();
-  const std::vector<char> inside = m_.interior_labels(g);
+  for (std::size_t v = 0; v < m_.verts_.size(); ++v) {
+    if (!m_.poll(1, false)) return;
+    m_.nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
+  }
+  const RegularTriangulation::CellGraph g = m_.scan_cell_graph();
+  if (m_.stopped()) return;
+  const std::vector<char> inside = m_.interior_labels(g, true);
+  if (m_.stopped()) return;
   labels_.clear();
-  for (std::size_t i = 0; i < g.cells.size(); ++i) labels_[key_of(g.cells[i])] = inside[i];
+  for (std::size_t i = 0; i < g.cells.size(); ++i) {
+    if (!m_.poll(1, false)) return;
+    labels_[key_of(g.cells[i])] = inside[i];
+  }
   // Vertices of inside tets with a dihedral angle <= theta, worst first.
   candidates_.clear();
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
+    if (!m_.poll(1, false)) return;
     if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
     const double a = angle_of(g.cells[i]);
     if (a <= m_.opt_.theta_deg)
@@ -87,6 +98,7 @@ double Pump::weight_bound(int v) const { return m_.nn_[v] * m_.nn_[v] / 9; }
 
 void Pump::run() {
   prepare();
+  if (m_.stopped()) return;
   std::vector<std::pair<double, int>> cand = candidates();
   for (int pass = 0; pass < m_.opt_.max_pump_passes && !cand.empty(); ++pass) {
     std::sort(cand.begin(), cand.end());
@@ -129,8 +141,14 @@ char Pump::label(const Tet& t) {
   if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
   const auto it = labels_.find(key_of(t));
   if (it != labels_.end()) return it->second;
+  // At most kRounds rounds, each over a deduplicated list of cells.
+  constexpr int kRounds = 64;
   std::vector<Tet> todo{t};
-  for (int round = 0; round < 64 && !todo.empty(); ++round) {
+  for (int round = 0; round < kRounds && !todo.empty(); ++round) {
+    std::sort(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) < key_of(b); });
+    todo.erase(std::unique(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) == key_of(b); }),
+               todo.end());
+    m_.poll(todo.size());
     std::vector<Tet> later;
     for (const Tet& c : todo) {
       if (labels_.count(key_of(c))) continue;
@@ -200,6 +218,7 @@ double Pump::evaluate(int v, double w, const Features& f) {
   if (!present(f) || !present(features_around(v))) return -1;
   std::vector<Tet> star;
   tri_.incident_cells(v, star);
+  m_.poll(star.size() + f.segments.size() + f.subfacets.size());
   double worst = 180;
   for (const Tet& t : star)
     if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
@@ -216,7 +235,10 @@ double Pump::next_critical(int v, double w, double cap) const {
   const Point3& pv = tri_.point(v);
   for (const Tet& t : star) {
     int i = 0;
-    while (t[i] != v) ++i;
+    while (i < 4 && t[i] != v) ++i;  // at most 4
+    if (i == 4)
+      throw LoopBoundError("Pump::next_critical: a cell of the star of vertex " + std::to_string(v) +
+                           " does not hold it");
     const int a = t[(i + 1) % 4], b = t[(i + 2) % 4], c = t[(i + 3) % 4];
     if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
     Tet c1, c2;
@@ -244,7 +266,10 @@ Pump::Choice Pump::pump_vertex(int v) {
   // the star, hence the smallest angle, does not change: one sample each.
   double cw = 0;
   tri_.set_weight(v, cw);  // only the star at cw matters to next_critical
-  for (int step = 0; step < 256; ++step) {
+  // At most kSteps critical weights are visited (a choice: stars change at
+  // a few dozen weights in practice).
+  constexpr int kSteps = 256;
+  for (int step = 0; step < kSteps; ++step) {
     const double c = next_critical(v, cw, wmax);
     const double sample = 0.5 * (cw + c);
     const double q = evaluate(v, sample, f);

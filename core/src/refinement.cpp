@@ -24,7 +24,36 @@ double min_dihedral(const RegularTriangulation& tri, const Tet& t) {
 
 bool Mesher::tick() {
   ++steps_;
-  if (steps_ % 256 != 0) return stop_reason_.empty();
+  step_done();
+  if (steps_ % 256 == 0) next_poll_ = work_;  // a progress call at least every 256 steps
+  return poll(0, false);
+}
+
+bool Mesher::poll(std::uint64_t units, bool in_step) {
+  work_ += units;
+  if (in_step) {
+    step_work_ += units;
+    if (step_work_ > opt_.stall_work && stop_reason_.empty()) {
+      static const char* kNames[] = {"initialize", "conform", "refine", "pump", "done"};
+      stop_reason_ = "stalled";
+      stop_message_ = std::string("a step of ") + kNames[int(phase_)] + " (step " + std::to_string(steps_ + 1) +
+                      ", at " + std::to_string(verts_.size()) + " vertices) did more than " +
+                      std::to_string(opt_.stall_work) +
+                      " units of work without finishing: the stuck-step watchdog ended the run";
+    }
+  }
+  if (work_ >= next_poll_) {
+    next_poll_ = work_ + kPollWork;
+    report_progress();
+  }
+  return stop_reason_.empty();
+}
+
+RegularTriangulation::CellGraph Mesher::scan_cell_graph() {
+  return tri_.cell_graph([this](std::size_t cells) { return poll(cells, false); });
+}
+
+void Mesher::report_progress() {
   if (progress_) {
     Progress p;
     p.phase = phase_ == Phase::conform ? "conform" : phase_ == Phase::refine ? "refine" : phase_ == Phase::pump ? "pump" : "initialize";
@@ -37,7 +66,6 @@ bool Mesher::tick() {
     p.fraction = base + share * (1 - 1 / (1 + double(steps_) / 20000));
     if (!progress_(p) && stop_reason_.empty()) stop_reason_ = "cancelled";
   }
-  return stop_reason_.empty();
 }
 
 void Mesher::enqueue_around(int v) {
@@ -46,6 +74,8 @@ void Mesher::enqueue_around(int v) {
   std::vector<Tet> cells;
   std::vector<CellRef> refs;
   tri_.incident_cells(v, cells, &refs);
+  // The upkeep always completes (a stop is seen by the caller's loop).
+  poll(cells.size());
   std::vector<int> ring;
   for (const Tet& c : cells)
     for (int x : c)
@@ -81,13 +111,16 @@ void Mesher::enqueue_around(int v) {
     for (int f : fs) {
       // v's own star is always walked whole.
       const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
+      poll(1);
       if (facet_dt_[f].incident_triangles(x, around, cap)) {
+        poll(around.size());
         for (const Tri& t : around)
           if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
         continue;
       }
       for (int y : ring) {
         if (y == x || y == v) continue;
+        poll(1);
         facet_dt_[f].edge_triangles(x, y, pair);
         for (const Tri& t : pair)
           if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
@@ -101,7 +134,13 @@ void Mesher::enqueue_around(int v) {
 }
 
 bool Mesher::process_queues(bool refine_phase) {
+  // Bounded by the queues: each pass takes one element off a queue, and
+  // elements are pushed only by insertions (at most a star's worth each, and
+  // the vertex limit bounds the insertions) or again after one (at most
+  // kRetries times per feature).
   while (stop_reason_.empty()) {
+    step_done();  // each queue element is a step of the watchdog
+    if (!poll(1)) break;
     if (!seg_queue_.empty()) {
       // Rule 1 / rule 4: split an encroached subsegment.
       const std::uint64_t k = seg_queue_.front();
@@ -194,7 +233,8 @@ bool Mesher::rule3() {
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
   for (std::uint64_t k : keys) {
-    if (!stop_reason_.empty()) break;
+    step_done();
+    if (!poll(1)) break;
     const auto it = segs_.find(k);
     if (it == segs_.end()) continue;
     const Subsegment s = it->second;
@@ -240,8 +280,9 @@ void Mesher::conform() {
   std::sort(seg_queue_.begin(), seg_queue_.end());
   if (!process_queues(false)) return;
   if (opt_.max_size > 0 && !split_long_sharp_subsegments()) return;
-  int passes = 0;
-  while (stop_reason_.empty() && rule3() && ++passes < 1000) {
+  // Rule 3 passes until one inserts nothing, at most kRule3Passes.
+  constexpr int kRule3Passes = 1000;
+  for (int passes = 0; stop_reason_.empty() && passes < kRule3Passes && rule3(); ++passes) {
   }
   make_protecting_balls();
 }
@@ -257,7 +298,14 @@ bool Mesher::split_long_sharp_subsegments() {
   // after each split. (Inside a vertex ball the circumradius stays at most the
   // ball's radius f(u)/4, which INITIALIZE fixes.)
   const double bound = 2.0 / 3.0 * opt_.max_size;
+  // Each pass halves every sharp subsegment longer than the bound, so the
+  // passes are at most log2(longest / bound) + 1: below kPasses for any two
+  // positive doubles (their exponents span less than 2100).
+  constexpr int kPasses = 2100;
+  int passes = 0;
   for (bool again = true; again;) {
+    if (++passes > kPasses)
+      throw LoopBoundError("split_long_sharp_subsegments: more than " + std::to_string(kPasses) + " passes");
     again = false;
     std::vector<std::uint64_t> keys;
     for (const auto& [k, s] : segs_)
@@ -275,7 +323,7 @@ bool Mesher::split_long_sharp_subsegments() {
   return stop_reason_.empty();
 }
 
-std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph& g) const {
+std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph& g, bool scan) {
   // Flood fill from the infinite cells; the subfacets of input facets are the
   // walls.
   std::unordered_set<Tri, TriHash> walls;
@@ -290,7 +338,9 @@ std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph&
       label[i] = 0;
       stack.push_back(static_cast<int>(i));
     }
+  // Each cell is pushed once (labelled when pushed): at most |cells| pops.
   while (!stack.empty()) {
+    if (scan && !poll(1, false)) return label;
     const int c = stack.back();
     stack.pop_back();
     for (int k = 0; k < 4; ++k) {
@@ -334,10 +384,13 @@ bool Mesher::rule7_pass() {
   // outside are discarded at the end), and the features examined are those
   // incident to v and to its neighbours (a choice: the paper does not say how
   // far to look).
-  const RegularTriangulation::CellGraph g = tri_.cell_graph();
-  const std::vector<char> inside = interior_labels(g);
+  const RegularTriangulation::CellGraph g = scan_cell_graph();
+  if (stopped()) return false;
+  const std::vector<char> inside = interior_labels(g, true);
+  if (stopped()) return false;
   std::vector<std::pair<double, int>> candidates;
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
+    if (!poll(1, false)) return false;
     if (!inside[i] || std::find(g.cells[i].begin(), g.cells[i].end(), kInfinite) != g.cells[i].end()) continue;
     const double angle = min_dihedral(tri_, g.cells[i]);
     if (angle <= opt_.theta_deg)
@@ -349,7 +402,8 @@ bool Mesher::rule7_pass() {
   std::vector<int> ring, fs;
   std::vector<Tri> around;
   for (const auto& [angle, v] : candidates) {
-    if (!stop_reason_.empty()) break;
+    step_done();  // each candidate is a step of the watchdog
+    if (!poll(1)) break;
     if (done[v]) continue;
     done[v] = 1;
     const Point3 pv = tri_.point(v);
@@ -358,6 +412,7 @@ bool Mesher::rule7_pass() {
     if (encroaches_expanded_ball(pv, w)) continue;
     tri_.adjacent_vertices(v, ring);
     ring.push_back(v);
+    poll(ring.size());
     // (i) subsegments: power distance to the diametric ball <= 0.
     std::vector<std::uint64_t> seg_keys;
     for (int x : ring)
@@ -476,7 +531,9 @@ void Mesher::refine() {
   }
   if (!process_queues(true)) return;
   if (!opt_.pump) return;
-  for (int pass = 0; pass < 100 && stop_reason_.empty(); ++pass)
+  // Rule 7 passes until one inserts nothing, at most kRule7Passes.
+  constexpr int kRule7Passes = 100;
+  for (int pass = 0; pass < kRule7Passes && stop_reason_.empty(); ++pass)
     if (!rule7_pass()) break;
 }
 

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -42,6 +43,16 @@ struct MeshOptions {
   /// Also time a plain Delaunay triangulation of the final vertex set (the
   /// floor no refinement can beat), in MeshResult::delaunay_floor_s.
   bool measure_floor = false;
+  /// The stuck-step watchdog (beyond the paper): a single step of the mesher
+  /// (one insertion with its upkeep, one queue element, one rule-3 or rule-7
+  /// candidate, one PUMP vertex) that does more than this many units of work
+  /// ends the run with stopped = "stalled". A unit is a cell of a star, a
+  /// feature or walk looked at, or a cell of a PUMP weight change, each
+  /// bounded by the size of a star; the count is deterministic, so native and
+  /// wasm stop at the same point. The default is far above any step of a
+  /// sound run: the largest steps measured were 2e4 to 6e4 units (decimated
+  /// spheres, fandisk.off) and 5e5 (anchor.off, in CONFORM).
+  std::uint64_t stall_work = 100'000'000;
 };
 
 /// Progress report: phase name ("initialize", "conform", "refine", "pump",
@@ -50,12 +61,18 @@ struct MeshOptions {
 struct Progress {
   std::string phase;
   std::size_t vertices = 0;
-  std::size_t steps = 0;
+  std::size_t steps = 0;  ///< insertions by the rules and PUMP vertices so far
   double fraction = 0;
 };
 
-/// Called after a bounded amount of work (every 256 insertions or pump steps
-/// and at each phase change). Returns false to cancel the run.
+/// Called at each phase change and after a bounded amount of work inside
+/// every phase and every long step: at least every 256 steps and every 256
+/// units of work (Mesher::kPollWork; a unit is bounded by the size of a star:
+/// see MeshOptions::stall_work), INITIALIZE's insertions and the whole-mesh
+/// scans of rule 7 and PUMP included, so a cancel takes effect within a few
+/// milliseconds of work. Returns false to cancel the run. It may also throw
+/// to abandon the run (the wasm bindings do when memory is short): it is
+/// never called from inside a CGAL insertion.
 using ProgressCallback = std::function<bool(const Progress&)>;
 
 /// A protecting ball (section 4.2): a vertex ball (radius f(u)/4 at a sharp
@@ -92,10 +109,13 @@ struct MeshResult {
   /// Per vertex of mesh: its index in the PLC when it is an input vertex, else -1.
   std::vector<int> input_vertex;
   std::vector<ProtectingBall> protecting_balls;
-  /// "" when done, "limit" (max_vertices reached) or "cancelled".
+  /// "" when done, "limit" (max_vertices reached), "cancelled" (the progress
+  /// callback returned false) or "stalled" (a step went past
+  /// MeshOptions::stall_work units of work: the watchdog).
   std::string stopped;
   /// Why the run stopped, in words, when it did (for "limit": where the vertex
-  /// budget went, or the input feature that needs more vertices than it).
+  /// budget went, or the input feature that needs more vertices than it; for
+  /// "stalled": the phase, the step and the work it did).
   std::string stop_message;
   /// Every subsegment and subfacet is in the final triangulation.
   bool conforming = false;

@@ -1,0 +1,222 @@
+// The invariants every finished run of the mesher must meet, checked on the
+// output mesh alone (shared by mesher_test.cpp and regression_test.cpp):
+// positive tets, the input volume, input vertices kept at their coordinates,
+// boundary triangles in their facets' planes covering them exactly, input
+// edges as chains of mesh edges, weights within [0, N(v)^2/9], the regular
+// triangulation's empty orthospheres, and the class counts.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "mesher_state.h"
+#include "wqmesh/analysis.h"
+#include "wqmesh/input.h"
+#include "wqmesh/mesher.h"
+#include "wqmesh/quality.h"
+#include "wqmesh/report.h"
+
+namespace wqmesh::invariants {
+
+using mesher::cross;
+using mesher::dot;
+using mesher::sub;
+
+struct Input {
+  PLC plc;
+  Analysis analysis;
+};
+
+inline Input load(const std::string& path, double box_margin = 0.5) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string bytes = s.str();
+  AnalysisOptions ao;
+  ao.box_margin = box_margin;
+  const CheckResult r = check_polyhedron(bytes.data(), bytes.size(), {}, ao);
+  EXPECT_TRUE(r.valid) << path << ": " << r.error;
+  return {r.plc, r.analysis};
+}
+
+inline Input from_off(const std::string& off) {
+  const CheckResult r = check_polyhedron(off.data(), off.size());
+  EXPECT_TRUE(r.valid) << r.error;
+  return {r.plc, r.analysis};
+}
+
+inline double orient(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return dot(sub(b, a), cross(sub(c, a), sub(d, a)));
+}
+
+inline double diag(const PLC& plc) {
+  Point3 lo = plc.vertices[0], hi = plc.vertices[0];
+  for (const Point3& p : plc.vertices)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  return std::sqrt(mesher::dist2(lo, hi));
+}
+
+inline double facet_area(const PLC& plc, const PlcFacet& f) {
+  Point3 n{{0, 0, 0}};
+  for (const auto& loop : f.loops)
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point3& a = plc.vertices[loop[i]];
+      const Point3& b = plc.vertices[loop[(i + 1) % loop.size()]];
+      n = mesher::add(n, cross(a, b));
+    }
+  return 0.5 * std::sqrt(dot(n, n));
+}
+
+// Every invariant of the issue, from the mesh alone.
+inline void expect_invariants(const std::string& name, const Input& in, const MeshResult& r) {
+  SCOPED_TRACE(name);
+  ASSERT_TRUE(r.conforming);
+  ASSERT_TRUE(r.stopped.empty());
+  const TetMesh& m = r.mesh;
+  const PLC& plc = in.plc;
+  ASSERT_FALSE(m.tets.empty());
+  const double d = diag(plc);
+
+  // Orientation and volume.
+  double volume = 0;
+  for (const auto& t : m.tets) {
+    const double o = orient(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    EXPECT_GT(o, 0);
+    volume += o / 6;
+  }
+  const double v_in = plc_volume(plc);
+  EXPECT_NEAR(volume, v_in, 1e-9 * std::fabs(v_in));
+
+  // Input vertices: vertex i of the mesh, at its exact coordinates.
+  for (std::size_t i = 0; i < plc.vertices.size(); ++i) {
+    ASSERT_LT(i, m.vertices.size());
+    EXPECT_EQ(m.vertices[i], plc.vertices[i]);
+    EXPECT_EQ(r.input_vertex[i], int(i));
+  }
+
+  // Boundary triangles: in their facet's plane, and covering it exactly.
+  std::vector<double> covered(plc.facets.size(), 0);
+  ASSERT_EQ(m.boundary.size(), m.boundary_facet.size());
+  for (std::size_t i = 0; i < m.boundary.size(); ++i) {
+    const int f = m.boundary_facet[i];
+    ASSERT_GE(f, 0) << "a boundary triangle in no input facet";
+    const auto& t = m.boundary[i];
+    const Point3 n = cross(sub(m.vertices[t[1]], m.vertices[t[0]]), sub(m.vertices[t[2]], m.vertices[t[0]]));
+    covered[f] += 0.5 * std::sqrt(dot(n, n));
+    // Outward, like the facet.
+    EXPECT_GT(dot(n, plc.facets[f].normal), 0);
+    const Point3& o = plc.vertices[plc.facets[f].loops[0][0]];
+    const Point3& fn = plc.facets[f].normal;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LE(std::fabs(dot(sub(m.vertices[t[k]], o), fn)) / std::sqrt(dot(fn, fn)), 1e-12 * d);
+  }
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    const double a = facet_area(plc, plc.facets[f]);
+    EXPECT_NEAR(covered[f], a, 1e-9 * a) << "facet " << f;
+  }
+
+  // Input edges: chains of mesh edges.
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : m.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) edges.insert({std::min(t[i], t[j]), std::max(t[i], t[j])});
+  for (const PlcEdge& e : plc.edges) {
+    const Point3 &a = plc.vertices[e.a], &b = plc.vertices[e.b];
+    const Point3 ab = sub(b, a);
+    const double len2 = dot(ab, ab);
+    std::vector<std::pair<double, int>> on;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      const Point3 av = sub(m.vertices[v], a);
+      const double t = dot(av, ab) / len2;
+      if (t < -1e-12 || t > 1 + 1e-12) continue;
+      const Point3 off = sub(av, mesher::mul(ab, t));
+      if (dot(off, off) <= 1e-24 * d * d) on.push_back({t, int(v)});
+    }
+    std::sort(on.begin(), on.end());
+    ASSERT_GE(on.size(), 2u);
+    EXPECT_EQ(on.front().second, e.a);
+    EXPECT_EQ(on.back().second, e.b);
+    for (std::size_t i = 0; i + 1 < on.size(); ++i) {
+      const int p = std::min(on[i].second, on[i + 1].second), q = std::max(on[i].second, on[i + 1].second);
+      EXPECT_TRUE(edges.count({p, q})) << "input edge " << e.a << "-" << e.b << " is not a chain of mesh edges";
+    }
+  }
+
+  // Weights within the bound [0, N(v)^2/9].
+  if (!m.weights.empty()) {
+    ASSERT_EQ(m.weights.size(), m.vertices.size());
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      EXPECT_GE(m.weights[v], 0);
+      EXPECT_LE(m.weights[v], r.nearest_neighbour[v] * r.nearest_neighbour[v] / 9 * (1 + 1e-12));
+    }
+  }
+
+  // Regular triangulation: across every inner face, the opposite vertex is
+  // not weighted-inside the orthosphere.
+  std::map<std::array<int, 3>, std::pair<int, int>> face_owner;
+  for (std::size_t i = 0; i < m.tets.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      std::array<int, 3> f;
+      for (int j = 0, n = 0; j < 4; ++j)
+        if (j != k) f[n++] = m.tets[i][j];
+      std::sort(f.begin(), f.end());
+      const auto it = face_owner.find(f);
+      if (it == face_owner.end()) {
+        face_owner[f] = {int(i), k};
+        continue;
+      }
+      const auto& t = m.tets[it->second.first];
+      const int x = m.tets[i][k];
+      std::array<double, 4> w{};
+      for (int j = 0; j < 4; ++j) w[j] = m.weights.empty() ? 0 : m.weights[t[j]];
+      const TetQuality q = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]], &w);
+      (void)q;
+      // Orthocenter from the definition |z - p|^2 - w = Z^2.
+      double a[3][4];
+      for (int row = 0; row < 3; ++row) {
+        const Point3& p = m.vertices[t[row + 1]];
+        const Point3& p0 = m.vertices[t[0]];
+        for (int c = 0; c < 3; ++c) a[row][c] = 2 * (p[c] - p0[c]);
+        a[row][3] = dot(p, p) - w[row + 1] - dot(p0, p0) + w[0];
+      }
+      for (int c = 0; c < 3; ++c) {
+        int piv = c;
+        for (int row = c + 1; row < 3; ++row)
+          if (std::fabs(a[row][c]) > std::fabs(a[piv][c])) piv = row;
+        std::swap(a[c], a[piv]);
+        for (int row = 0; row < 3; ++row)
+          if (row != c) {
+            const double fct = a[row][c] / a[c][c];
+            for (int k2 = c; k2 < 4; ++k2) a[row][k2] -= fct * a[c][k2];
+          }
+      }
+      const Point3 z{{a[0][3] / a[0][0], a[1][3] / a[1][1], a[2][3] / a[2][2]}};
+      const double z2 = mesher::dist2(m.vertices[t[0]], z) - w[0];
+      const double wx = m.weights.empty() ? 0 : m.weights[x];
+      const double power = mesher::dist2(m.vertices[x], z) - wx - z2;
+      // Nearly flat tets have no orthosphere that doubles can tell.
+      const TetQuality tq = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+      if (tq.min_dihedral_deg > 1e-3 && std::isfinite(z2))
+        EXPECT_GE(power, -1e-6 * std::max(z2, 1e-300))
+            << "vertex " << x << " inside the orthosphere of " << t[0] << " " << t[1] << " " << t[2] << " "
+            << t[3] << " (min dihedral " << tq.min_dihedral_deg << ", z2 " << z2 << ")";
+    }
+
+  // Classes agree with the definitions and the counts.
+  std::size_t violations = 0;
+  for (std::size_t i = 0; i < m.tets.size(); ++i) violations += r.tet_class[i] == TetClass::violation;
+  EXPECT_EQ(violations, r.violations);
+}
+
+}  // namespace wqmesh::invariants
