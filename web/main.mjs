@@ -172,6 +172,7 @@ async function loadFile(file) {
 
 function clearResults() {
   page.meshInfo = null;
+  viewer.showPlane(null);
   viewer.clear('mesh');
   viewer.clear('overlay');
   viewer.clear('marker');
@@ -250,6 +251,7 @@ function showAnalysis(r, surface) {
   ul.lastChild.append(`, sharp vertices: ${a.counts.sharp_vertices}`);
   li(`acute angles: ${a.counts.acute_edge_edge_angles} edge-edge, ${a.counts.acute_edge_facet_angles} edge-facet`);
   for (const w of r.warnings) li(`repaired: ${w}`);
+  if (surface?.marksSkipped) li(`(${surface.triangles} triangles: the sharp elements are not marked in the view)`);
   if (surface?.counts && (surface.counts.sharpEdges !== a.counts.sharp_edges ||
       surface.counts.sharpVertices !== a.counts.sharp_vertices)) {
     li(`(the marks in the view are the page's own reading: ${surface.counts.sharpEdges} sharp edges, ` +
@@ -491,6 +493,7 @@ async function refreshView() {
       if (!x || !page.meshInfo) break;
       const t1 = performance.now();
       viewer.showTets(x);
+      showPlane();
       viewer.setShrink(state.shrink);
       await viewer.nextFrame();
       const t2 = performance.now();
@@ -505,6 +508,14 @@ async function refreshView() {
   } finally {
     viewBusy = false;
   }
+}
+
+function showPlane() {
+  const info = page.meshInfo;
+  if (!info || !state.clip) { viewer.showPlane(null); return; }
+  const k = { x: 0, y: 1, z: 2 }[state.axis];
+  const lo = info.box.lo.map((x, i) => x - info.origin[i]), hi = info.box.hi.map((x, i) => x - info.origin[i]);
+  viewer.showPlane({ axis: k, at: lo[k] + state.cut * (hi[k] - lo[k]), lo, hi });
 }
 
 function showOverlays() {

@@ -111,6 +111,10 @@ export function triangulate(surface) {
     }
     faceNormal.set([nx, ny, nz], 3 * f);
     if (face.length === 3) { tri.push(...face); triFace.push(f); return; }
+    if (face.length > 1000) {  // ear clipping is quadratic: a fan for huge polygons (the preview only)
+      for (let j = 1; j + 1 < face.length; ++j) { tri.push(face[0], face[j], face[j + 1]); triFace.push(f); }
+      return;
+    }
     // Project to the two axes other than the normal's largest component.
     const ax = Math.abs(nx), ay = Math.abs(ny), az = Math.abs(nz);
     const [i0, i1, s] = az >= ax && az >= ay ? [0, 1, Math.sign(nz)] : ax >= ay ? [1, 2, Math.sign(nx)] : [2, 0, Math.sign(ny)];

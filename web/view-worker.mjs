@@ -11,6 +11,7 @@
 import { cross, dot, features, locate, readSurface, sub, triangulate } from './surface.mjs';
 import { neighbours, extract, dihedralHistogram, worstTets, gridMesh, TET_FACES } from './tetfaces.mjs';
 
+const MAX_MARKED_TRIANGLES = 200000;
 let mesh = null;    // { vertices, tets, tetClass, minDihedral, radiusEdge, weights, nb, stats, ... }
 let origin = [0, 0, 0];
 
@@ -36,8 +37,13 @@ function surfaceMessage({ bytes, error }) {
   const rel = (p, out, o) => { out[o] = p[0] - origin[0]; out[o + 1] = p[1] - origin[1]; out[o + 2] = p[2] - origin[2]; };
   const positions = new Float32Array(3 * tri.length);
   for (let i = 0; i < tri.length; ++i) rel([P[3 * tri[i]], P[3 * tri[i] + 1], P[3 * tri[i] + 2]], positions, 3 * i);
+  // The marks of sharp elements cost about 30 us per triangle: skipped for
+  // very large inputs, so that the preview (and this worker's queue) stays quick.
   let F = null;
-  try { F = features(s); } catch { F = null; }
+  const marks = tri.length / 3 <= MAX_MARKED_TRIANGLES;
+  if (marks) {
+    try { F = features(s); } catch { F = null; }
+  }
   const lines = (list) => {
     const out = new Float32Array(6 * list.length);
     list.forEach(([a, b], i) => { rel(F.pos[a], out, 6 * i); rel(F.pos[b], out, 6 * i + 3); });
@@ -70,6 +76,7 @@ function surfaceMessage({ bytes, error }) {
       positions, featureLines, sharpLines, sharpPoints, bad, origin,
       size: Math.max(...box.hi.map((x, k) => x - box.lo[k])) || 1,
       counts: F ? { edges: F.edges.length, sharpEdges: F.sharpEdges.length, sharpVertices: F.sharpVertices.length } : null,
+      marksSkipped: !marks,
       triangles: tri.length / 3, faces: s.faces.length, points: P.length / 3,
     },
     transfer,

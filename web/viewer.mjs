@@ -234,6 +234,34 @@ export class Viewer {
     this.render();
   }
 
+  /**
+   * Outlines the clipping plane inside the box (relative coordinates):
+   * axis 0, 1 or 2, at `at` along it; null hides it.
+   */
+  showPlane(plane) {
+    if (!this.planeLine) {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(12), 3));
+      this.planeLine = new THREE.LineLoop(g, new THREE.LineBasicMaterial({ color: 0x0b5cad, transparent: true, opacity: 0.7 }));
+      this.scene.add(this.planeLine);
+    }
+    this.planeLine.visible = Boolean(plane);
+    if (plane) {
+      const { axis, at, lo, hi } = plane;
+      const [u, v] = [0, 1, 2].filter((k) => k !== axis);
+      const m = 0.04 * Math.max(...hi.map((x, k) => x - lo[k]));
+      const p = this.planeLine.geometry.getAttribute('position');
+      [[lo[u] - m, lo[v] - m], [hi[u] + m, lo[v] - m], [hi[u] + m, hi[v] + m], [lo[u] - m, hi[v] + m]].forEach(([a, b], i) => {
+        const xyz = [0, 0, 0];
+        xyz[axis] = at; xyz[u] = a; xyz[v] = b;
+        p.setXYZ(i, ...xyz);
+      });
+      p.needsUpdate = true;
+      this.planeLine.geometry.computeBoundingSphere();
+    }
+    this.render();
+  }
+
   setShrink(s) {
     this.shrink.value = s;
     this.render();
