@@ -455,6 +455,13 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
   await phone.screenshot({ path: join(shots, 'bracket-390x844.png') });
   await phone.screenshot({ path: join(shots, 'bracket-390x844-full.png'), fullPage: true });
   await phone.context().close();
+  // The tets near small angles of thin_wedge.off (skinny and slivers near its
+  // 10-degree edges), every other tet hidden.
+  const wedge = await open('?example=thin_wedge.off&clip=0&rest=hide');
+  assert.equal(await waitState(wedge, ['done', 'error']), 'done');
+  await wedge.waitForTimeout(300);
+  await wedge.screenshot({ path: join(shots, 'thin_wedge-near-1280x800.png') });
+  await wedge.context().close();
 });
 
 test('console free of errors and warnings; no request off 127.0.0.1', { skip }, () => {
