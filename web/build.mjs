@@ -2,12 +2,14 @@
 // (node_modules/three), the package's JS (wasm/*.mjs) and the wasm module
 // (build/wasm/wasm/wqmesh.mjs, one ES module with the wasm inlined) and the
 // example models into one folder that any static host can serve as is:
-// build/web/ (nothing is fetched from another host; an import map resolves
-// 'three'). The package keeps its layout inside pkg/ so that its
+// build/web/ (nothing is fetched from another host). The bare specifiers
+// 'three' and 'three/addons/...' are rewritten to relative paths as the
+// files are copied, so the page needs no inline import map and runs under
+// a strict Content-Security-Policy (script-src 'self' 'wasm-unsafe-eval').
+// The package keeps its layout inside pkg/ so that its
 // import.meta.url-relative paths hold.
 // Usage: node web/build.mjs [--out DIR] [--module PATH/wqmesh.mjs] [--pkg DIR (default wasm/)]
 // SPDX-License-Identifier: GPL-3.0-or-later
-import { createHash } from 'node:crypto';
 import { copyFileSync, existsSync, mkdirSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -31,13 +33,22 @@ const copy = (from, to) => {
   mkdirSync(dirname(to), { recursive: true });
   copyFileSync(from, to);
 };
+/** Copies a JS module with its imports of 'three' made relative to `threeBuild` and `addons` (URL paths). */
+const copyModule = (from, to, threeBuild, addons) => {
+  mkdirSync(dirname(to), { recursive: true });
+  const text = readFileSync(from, 'utf8')
+    .replace(/from 'three'/g, `from '${threeBuild}'`)
+    .replace(/from 'three\/addons\/([^']+)'/g, (_, f) => `from '${addons}${f}'`);
+  writeFileSync(to, text);
+};
 rmSync(out, { recursive: true, force: true });
 mkdirSync(out, { recursive: true });
 
 // The page.
 for (const f of readdirSync(join(root, 'web'))) {
   if (f === 'build.mjs' || f === 'measure.mjs' || f === 'README.md') continue;  // Node scripts
-  if (/\.(html|css|mjs)$/.test(f)) copy(join(root, 'web', f), join(out, f));
+  if (/\.mjs$/.test(f)) copyModule(join(root, 'web', f), join(out, f), './vendor/three/build/three.module.js', './vendor/three/examples/jsm/');
+  else if (/\.(html|css)$/.test(f)) copy(join(root, 'web', f), join(out, f));
 }
 // three.js: the module build and the one addon the page uses.
 const three = join(root, 'node_modules/three');
@@ -45,9 +56,9 @@ if (!existsSync(join(three, 'build/three.module.js'))) {
   console.error('web/build: node_modules/three is missing; run npm ci');
   process.exit(1);
 }
-for (const f of ['build/three.module.js', 'build/three.core.js', 'examples/jsm/controls/OrbitControls.js', 'LICENSE']) {
-  copy(join(three, f), join(out, 'vendor/three', f));
-}
+for (const f of ['build/three.module.js', 'build/three.core.js', 'LICENSE']) copy(join(three, f), join(out, 'vendor/three', f));
+copyModule(join(three, 'examples/jsm/controls/OrbitControls.js'), join(out, 'vendor/three/examples/jsm/controls/OrbitControls.js'),
+           '../../../build/three.module.js', '../');
 // The package: its JS files, and the module both where index.mjs looks for it
 // in the build tree and beside index.mjs.
 // (The package's command line, cli.mjs, is for Node: not served.)
@@ -68,10 +79,4 @@ if (readFileSync(join(pkg, 'index.mjs'), 'utf8').includes('../build/wasm/wasm/wq
 const models = readdirSync(join(root, 'examples/models')).filter((f) => /\.(off|stl)$/i.test(f)).sort();
 for (const f of models) copy(join(root, 'examples/models', f), join(out, 'models', f));
 writeFileSync(join(out, 'models/index.json'), `${JSON.stringify(models)}\n`);
-// The Content-Security-Policy allows the inline import map by its hash.
-let html = readFileSync(join(out, 'index.html'), 'utf8');
-const map = html.match(/<script type="importmap">([\s\S]*?)<\/script>/)[1];
-const hash = createHash('sha256').update(map).digest('base64');
-html = html.replace("script-src 'self'", `script-src 'self' 'sha256-${hash}'`);
-writeFileSync(join(out, 'index.html'), html);
 console.log(`web/build: page in ${out} (module ${module}, ${models.length} examples)`);

@@ -13,7 +13,7 @@
 // tets), picking by click and from the worst-tets list (the camera moves),
 // keyboard use (Tab, arrows, Enter; visible focus), downloads, no long task on the main thread
 // during a run, no console error or warning, no request off 127.0.0.1, no
-// horizontal overflow at phone width; saves screenshots under
+// horizontal overflow at phone width, a strict CSP header; saves screenshots under
 // build/screenshots/. Skips when Chromium or the built page is missing
 // (unless CI is set); the broken-model test skips without ../shared/models
 // (unless CI is set).
@@ -75,7 +75,7 @@ after(async () => {
 });
 
 /** A new page at `width` x `height` that records console problems and requests. */
-async function open(query = '', { width = 1280, height = 800, longTasks = false } = {}) {
+async function open(query = '', { width = 1280, height = 800, longTasks = false } = {}, base = server.url) {
   const context = await browser.newContext({ viewport: { width, height }, acceptDownloads: true });
   if (longTasks) {
     // Every task over 50 ms on the main thread, from the first script on.
@@ -104,7 +104,7 @@ async function open(query = '', { width = 1280, height = 800, longTasks = false 
       offHostRequests.push(u);
     }
   });
-  await page.goto(`${server.url}${query}`);
+  await page.goto(`${base}${query}`);
   return page;
 }
 
@@ -462,6 +462,19 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
   await wedge.waitForTimeout(300);
   await wedge.screenshot({ path: join(shots, 'thin_wedge-near-1280x800.png') });
   await wedge.context().close();
+});
+
+test('under a strict Content-Security-Policy header (script-src \'self\' \'wasm-unsafe-eval\') the page meshes', { skip }, async () => {
+  const strict = await serve({ root: webRoot, csp: "script-src 'self' 'wasm-unsafe-eval'" });
+  try {
+    const page = await open('', {}, strict.url);
+    await page.selectOption('#example', 'spike.off');
+    assert.equal(await waitState(page, ['done', 'error']), 'done');
+    assert.equal(await page.textContent('[data-stat=tets]'), String(packageResult(model('spike.off'), DEFAULTS).stats.tets));
+    await page.context().close();
+  } finally {
+    await strict.close();
+  }
 });
 
 test('console free of errors and warnings; no request off 127.0.0.1', { skip }, () => {
