@@ -372,8 +372,9 @@ export interface MeshStats {
   volume_mesh: number;
   /** Every subsegment and subfacet is in the mesh. */
   conforming: boolean;
-  /** "" when done, "limit" (the vertex limit) or "cancelled" (meshSync's onProgress returned false). */
-  stopped: '' | 'limit' | 'cancelled';
+  /** "" when done, "limit" (the vertex limit), "cancelled" (meshSync's onProgress returned false) or
+   * "stalled" (the stuck-step watchdog: one step of the mesher went past its work budget). */
+  stopped: '' | 'limit' | 'cancelled' | 'stalled';
   /** Why the run stopped, in words (present only when it stopped): the phase
    * that reached the vertex limit, or the two input edges whose small angle
    * needs more vertices than the limit (then the run stops before meshing). */
