@@ -86,6 +86,13 @@ struct FacetFrame {
 };
 
 class Analyzer {
+  /// A facet at a vertex: the facet, the loop and position of the vertex in
+  /// it, and whether that is a strictly convex corner of a convex facet.
+  struct Corner {
+    int f, loop, r;
+    bool fast;
+  };
+
  public:
   Analyzer(const PLC& plc, const AnalysisOptions& options) : plc_(plc), options_(options) {}
 
@@ -104,15 +111,17 @@ class Analyzer {
     std::vector<int> turns;
     for (int f = 0; f < static_cast<int>(plc_.facets.size()); ++f) {
       const bool convex = is_convex(f, turns);
-      for (const auto& loop : plc_.facets[f].loops)
-        for (std::size_t r = 0; r < loop.size(); ++r)
-          vertex_facets_[loop[r]].push_back(
-              {f, convex && turns[r] > 0 ? static_cast<int>(r) : -1});
+      const auto& loops = plc_.facets[f].loops;
+      for (std::size_t l = 0; l < loops.size(); ++l)
+        for (std::size_t r = 0; r < loops[l].size(); ++r)
+          vertex_facets_[loops[l][r]].push_back({f, static_cast<int>(l), static_cast<int>(r),
+                                                 convex && turns[r] > 0});
     }
     for (auto& list : vertex_facets_) {
-      std::sort(list.begin(), list.end());
+      std::stable_sort(list.begin(), list.end(),
+                       [](const Corner& x, const Corner& y) { return x.f < y.f; });
       list.erase(std::unique(list.begin(), list.end(),
-                             [](const auto& x, const auto& y) { return x.first == y.first; }),
+                             [](const Corner& x, const Corner& y) { return x.f == y.f; }),
                  list.end());
     }
     check_angle_budget();
@@ -263,12 +272,11 @@ class Analyzer {
       std::sort(es.begin(), es.end());
       for (int e : es) {
         const int v = other_end(e, u);
-        for (const auto& [f, r] : vertex_facets_[u]) {
+        for (const Corner& c : vertex_facets_[u]) {
+          const int f = c.f;
           if (f == plc_.edges[e].facets[0] || f == plc_.edges[e].facets[1]) continue;
           if (!frames_[f].valid() || side_of_facet(f, P(v)) == 0) continue;
-          EdgeFacetAngle ang = r >= 0 ? convex_edge_facet(u, v, f, r)
-                                      : EdgeFacetAngle{u, e, f, edge_facet_degrees(u, v, f),
-                                                       edge_facet_acute(u, v, f)};
+          EdgeFacetAngle ang = c.fast ? convex_edge_facet(u, v, f, c.r) : general_edge_facet(u, v, c);
           ang.edge = e;
           a.edge_facet.push_back(ang);
           a.phi_m_degrees = std::min(a.phi_m_degrees, ang.degrees);
@@ -328,6 +336,52 @@ class Analyzer {
     const double degrees = inside ? std::min({plane_angle, ea, eb}) : std::min(ea, eb);
     const bool acute = exact::dot_sign(P(u), P(a), P(v)) > 0 || exact::dot_sign(P(u), P(b), P(v)) > 0;
     return EdgeFacetAngle{u, -1, f, degrees, acute};
+  }
+
+  /// The edge-facet angle of uv and any facet, u at corner c.r of loop c.loop.
+  /// O(1) in two cases decided exactly (beyond the paper, same result as the
+  /// literal definition): w = v - u perpendicular to F's plane (every
+  /// direction in F makes the same angle with w, not acute: (p - u).w = 0),
+  /// and w's projection on the plane pointing strictly into F's sector at u
+  /// (the interior angle between the loop's sides at u, reflex or not), where
+  /// u + t w' lies in F for small t > 0: the angle is the angle between w and
+  /// the plane, the smallest possible, and acute. Otherwise the whole facet
+  /// is searched (edge_facet_degrees, edge_facet_acute): O(|F|).
+  EdgeFacetAngle general_edge_facet(int u, int v, const Corner& c) const {
+    const int f = c.f;
+    const auto& loop = plc_.facets[f].loops[c.loop];
+    const std::size_t m = loop.size();
+    const int a = loop[(c.r + m - 1) % m], b = loop[(c.r + 1) % m];
+    auto w = [&](auto z) { return lift<decltype(z)>(P(v)) - lift<decltype(z)>(P(u)); };
+    bool perpendicular = true;
+    for (int q = 0; q < 3 && perpendicular; ++q)
+      perpendicular = exact::sign([&](auto z) {
+                        using NT = decltype(z);
+                        const auto x = crossn(w(z), exact_normal<NT>(f));
+                        return q == 0 ? x.x : q == 1 ? x.y : x.z;
+                      }) == 0;
+    const V wd = sub(P(v), P(u));
+    const V& n = frames_[f].unit;
+    const double wn = dot(wd, n);
+    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(wd, scale(n, wn)))) * (180 / kPi);
+    if (perpendicular) return EdgeFacetAngle{u, -1, f, plane_angle, false};
+    auto side = [&](int from, int to, bool w_first) {
+      return exact::sign([&](auto z) {
+        using NT = decltype(z);
+        const auto d = lift<NT>(P(to)) - lift<NT>(P(from));
+        return dotn(w_first ? crossn(w(z), d) : crossn(d, w(z)), exact_normal<NT>(f));
+      });
+    };
+    const int s1 = side(u, b, false);  // (b - u) x w . N: w left of the side to b
+    const int s2 = side(u, a, true);   // w x (a - u) . N: w right of the side to a
+    const int turn = exact::sign([&](auto z) {
+      using NT = decltype(z);
+      return dotn(exact_normal<NT>(f), crossn(lift<NT>(P(u)) - lift<NT>(P(a)),
+                                              lift<NT>(P(b)) - lift<NT>(P(u))));
+    });
+    const bool inside = turn > 0 ? (s1 > 0 && s2 > 0) : turn < 0 ? (s1 > 0 || s2 > 0) : s1 > 0;
+    if (inside) return EdgeFacetAngle{u, -1, f, plane_angle, true};
+    return EdgeFacetAngle{u, -1, f, edge_facet_degrees(u, v, f), edge_facet_acute(u, v, f)};
   }
 
   /// The analysis lists every edge-edge pair at a vertex and every edge-facet
@@ -503,7 +557,7 @@ class Analyzer {
   const PLC& plc_;
   AnalysisOptions options_;
   std::vector<std::vector<int>> vertex_edges_;
-  std::vector<std::vector<std::pair<int, int>>> vertex_facets_;  ///< (facet, convex position)
+  std::vector<std::vector<Corner>> vertex_facets_;
   std::vector<FacetFrame> frames_;
   /// Per edge, per facet side: the direction a loop of that facet runs along it.
   std::vector<std::array<std::pair<int, int>, 2>> traversal_;

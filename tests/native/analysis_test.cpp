@@ -576,13 +576,14 @@ TEST(Analysis, Json) {
 
 // ---- large polygons ------------------------------------------------------------
 
-/// An oblique prism over a convex polygon of n vertices on the ellipse
-/// (cos t, 0.6 sin t), the top shifted by `shift` (sides are parallelograms).
-PLC oblique_prism(int n, const Point3& shift) {
+/// An oblique prism over a polygon of n vertices on the ellipse (cos t,
+/// 0.6 sin t), every odd one pulled in to `odd` times its radius (1: convex,
+/// less: a star), the top shifted by `shift` (sides are parallelograms).
+PLC oblique_prism(int n, const Point3& shift, double odd = 1) {
   std::vector<std::array<double, 2>> xy;
   for (int i = 0; i < n; ++i) {
-    const double t = 2 * kPi * i / n;
-    xy.push_back({{std::cos(t), 0.6 * std::sin(t)}});
+    const double t = 2 * kPi * i / n, r = i % 2 ? odd : 1;
+    xy.push_back({{r * std::cos(t), r * 0.6 * std::sin(t)}});
   }
   PLC plc = make_prism(xy, 1);
   for (int i = n; i < 2 * n; ++i)
@@ -625,11 +626,14 @@ double sampled_edge_facet(const PLC& plc, int u, int v, int f, int samples) {
   return best;
 }
 
-// Convex facets take the O(1) path of the analysis: on a small oblique prism
-// (acute and obtuse edge-facet angles, convex facets only) every angle
+// Convex facets and directions into a facet's sector take the O(1) paths of
+// the analysis: on small oblique prisms over a convex polygon and over a star
+// (acute and obtuse edge-facet angles, reflex corners, notches) every angle
 // agrees with the sampled literal definition, and the invariants hold.
-TEST(Analysis, ConvexFacetsMatchTheLiteralEdgeFacetAngle) {
-  const PLC plc = oblique_prism(9, {{0.7, 0.4, 1.0}});
+class AnalysisFastPaths : public ::testing::TestWithParam<double> {};
+INSTANTIATE_TEST_SUITE_P(Analysis, AnalysisFastPaths, ::testing::Values(1.0, 0.6));
+TEST_P(AnalysisFastPaths, MatchTheLiteralEdgeFacetAngle) {
+  const PLC plc = oblique_prism(10, {{0.7, 0.4, 1.0}}, GetParam());
   const Analysis a = analyze(plc);
   check_invariants(plc, a);
   ASSERT_FALSE(a.edge_facet.empty());
