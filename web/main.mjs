@@ -343,6 +343,7 @@ async function startRun() {
 }
 
 async function showResult(result, ms, id) {
+  const shown = performance.now();
   page.prevStats = page.stats;
   page.prevHist = page.hist;
   page.stats = result.stats;
@@ -370,6 +371,7 @@ async function showResult(result, ms, id) {
   showOverlays();
   await refreshView();
   if (id !== page.runSeq) return;
+  page.resultTiming = { runMs: ms, firstPictureMs: performance.now() - shown, tableMs: info.tableMs };
   setState('done');
 }
 

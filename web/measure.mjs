@@ -7,7 +7,11 @@
 // frame drawn), the main thread's longest timer gap and longest task
 // meanwhile, and the resident memory of
 // all Chromium processes.
+// With --example NAME --max-size H it meshes that example in the page
+// instead and prints the run's time and the time from its result to the
+// first picture.
 // Usage: node web/build.mjs && node web/measure.mjs [n ...]   (default: 37 55, i.e. 304k and 998k tets)
+//        node web/measure.mjs --example box.off --max-size 0.03
 // SPDX-License-Identifier: GPL-3.0-or-later
 import { readFileSync, readdirSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
@@ -17,8 +21,11 @@ import { serve } from '../scripts/serve.mjs';
 import { CHROMIUM, CHROMIUM_ARGS } from '../tests/browser/lib/browser.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
-const sizes = process.argv.slice(2).map(Number).filter((n) => n > 0);
-if (!sizes.length) sizes.push(37, 55);
+const argv = process.argv.slice(2);
+const flag = (name) => { const i = argv.indexOf(name); return i >= 0 ? argv.splice(i, 2)[1] : undefined; };
+const example = flag('--example'), maxSize = flag('--max-size');
+const sizes = argv.map(Number).filter((n) => n > 0);
+if (!sizes.length && !example) sizes.push(37, 55);
 
 /** Resident memory (MB) of the process whose command line holds `mark` and of all its descendants. */
 function rssMb(mark) {
@@ -44,6 +51,18 @@ const server = await serve({ root: join(root, 'build/web') });
 const mark = `--wqmesh-measure-${process.pid}`;  // an unknown switch Chromium ignores, to find its processes
 const browser = await chromium.launch({ executablePath: CHROMIUM, args: [...CHROMIUM_ARGS, mark] });
 try {
+  if (example) {
+    const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+    const base = rssMb(mark);
+    await page.goto(`${server.url}?example=${encodeURIComponent(example)}${maxSize ? `&maxSize=${maxSize}` : ''}`);
+    await page.waitForFunction(() => ['done', 'error'].includes(document.body.dataset.state), null, { timeout: 900_000 });
+    const r = await page.evaluate(() => ({ ...window.__wqmeshPage.resultTiming, tets: window.__wqmeshPage.stats.tets,
+      time: window.__wqmeshPage.stats.time_s }));
+    console.log(`measure: ${example} size bound ${maxSize ?? 0}: ${r.tets} tets, run ${(r.runMs / 1000).toFixed(1)} s ` +
+      `(mesher ${r.time.toFixed(1)} s), result to first picture ${r.firstPictureMs.toFixed(0)} ms (face table ${r.tableMs.toFixed(0)} ms); ` +
+      `Chromium RSS ${base.toFixed(0)} MB before, ${rssMb(mark).toFixed(0)} MB after`);
+    await page.close();
+  }
   for (const n of sizes) {
     const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
     await page.addInitScript(() => {
