@@ -438,6 +438,16 @@ test('clipping plane keeps whole tets; downloads; screenshots at both widths', {
     const text = readFileSync(await dl.path(), 'utf8');
     assert.match(text, pattern, kind);
   }
+  // TetGen: four files, .node with the mesh's vertex count, .ele with its tet count.
+  const tetgen = [];
+  page.on('download', (d) => tetgen.push(d));
+  await page.click('[data-download=tetgen]');
+  for (let i = 0; i < 50 && tetgen.length < 4; ++i) await page.waitForTimeout(100);
+  const files = Object.fromEntries(await Promise.all(tetgen.map(async (d) => [d.suggestedFilename().split('.').pop(), readFileSync(await d.path(), 'utf8')])));
+  assert.deepEqual(Object.keys(files).sort(), ['edge', 'ele', 'face', 'node']);
+  assert.equal(Number(files.node.trim().split(/\s+/)[0]), result.vertices.length / 3);
+  assert.equal(Number(files.ele.trim().split(/\s+/)[0]), result.tets.length / 4);
+  page.removeAllListeners('download');  // (the listener above only)
   const [png] = await Promise.all([page.waitForEvent('download'), page.click('[data-download=png]')]);
   assert.equal(readFileSync(await png.path()).subarray(1, 4).toString(), 'PNG');
   // Screenshots: clip on, tets below 20 degrees highlighted, both widths.
