@@ -368,6 +368,9 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     const MemoryCap cap(max_memory);
     std::string data;
     copy_bytes(bytes, data);
+    // time_s as the command line's: from the bytes read to the mesh made
+    // (validation and analysis included).
+    const double t0 = val::global("Date").call<double>("now");
     const wqmesh::CheckResult input = wqmesh::check_polyhedron(data.data(), data.size(), {}, run.analysis);
     if (!input.valid) {
       // check_polyhedron calls a std::bad_alloc too_large: the cap's, here.
@@ -387,7 +390,6 @@ val mesh(const val& bytes, const val& options, const val& progress) {
       const val r = progress(p.phase, p.fraction, static_cast<double>(p.vertices), static_cast<double>(p.steps));
       return !r.isFalse();
     };
-    const double t0 = val::global("Date").call<double>("now");
     wqmesh::MeshResult r;
     {
       const DeferShortage defer;

@@ -157,16 +157,25 @@ async function inWorker(request, { signal, onProgress } = {}) {
 
 // ---- The async API (in a worker) ---------------------------------------------
 
+/**
+ * The bytes to post to the worker: a copy of just the view when it is part
+ * of a larger buffer (posting a view clones its whole buffer, e.g. Node's
+ * 8 kB Buffer pool). The caller's bytes are never transferred away.
+ */
+function ownBytes(bytes) {
+  return bytes.byteOffset === 0 && bytes.byteLength === bytes.buffer.byteLength ? bytes : bytes.slice();
+}
+
 /** Validates and analyses a polyhedron in a worker. See index.d.ts. */
 export async function check(input, checkOptions, control = {}) {
-  const bytes = toBytes(input, 'check');
+  const bytes = ownBytes(toBytes(input, 'check'));
   const opts = plainOptions(checkOptions, 'check');
   return inWorker({ op: 'check', bytes, options: opts }, { signal: control?.signal });
 }
 
 /** Meshes a polyhedron in a worker. See index.d.ts. */
 export async function mesh(input, meshOptions, control = {}) {
-  const bytes = toBytes(input, 'mesh');
+  const bytes = ownBytes(toBytes(input, 'mesh'));
   const opts = plainOptions(meshOptions, 'mesh');
   const onProgress = control?.onProgress;
   return inWorker({ op: 'mesh', bytes, options: opts, progress: typeof onProgress === 'function' },
