@@ -1,8 +1,10 @@
 // wqmesh: the package in a browser (Debian's Chromium through playwright-core,
 // tests/browser/lib/browser.mjs), served by scripts/serve.mjs with the strict
 // policy `Content-Security-Policy: script-src 'self' 'wasm-unsafe-eval'` on
-// every answer (no 'unsafe-eval', no inline script). A page imports
-// wasm/index.mjs with no bundler, meshes a model in a module worker (the
+// every answer (no 'unsafe-eval', no inline script). The server's folder
+// holds only what the tarball holds (package.json's `files`, copied to
+// node_modules/wqmesh/ of a temporary folder), and a page imports
+// /node_modules/wqmesh/wasm/index.mjs with no bundler, meshes a model in a module worker (the
 // mesh must conform, be positively oriented and keep the input volume),
 // aborts a second, long run (AbortError, within 100 ms of the abort) and
 // meshes again. No CSP violation, no page error, no failed request.
@@ -10,7 +12,8 @@
 // Run: node --test tests/browser/
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
@@ -28,7 +31,7 @@ const skip = browserSkipReason() || false;
 const PAGE = '<!doctype html><meta charset="utf-8"><title>wqmesh smoke</title>' +
              '<script type="module" src="/__smoke/smoke.mjs"></script>';
 const SCRIPT = `
-import * as wqmesh from '/wasm/index.mjs';
+import * as wqmesh from '/node_modules/wqmesh/wasm/index.mjs';
 window.violations = [];
 document.addEventListener('securitypolicyviolation', (e) => window.violations.push(e.violatedDirective + ' ' + e.blockedURI));
 window.wqmesh = wqmesh;
@@ -37,7 +40,13 @@ window.smokeReady = true;
 
 
 test('the package meshes in a module worker and aborts under a strict CSP', { skip, timeout: 240000 }, async () => {
-  const server = await serve({ root, csp: CSP });
+  const site = mkdtempSync(join(tmpdir(), 'wqmesh-site-'));
+  const pkg = join(site, 'node_modules/wqmesh');
+  for (const f of [...JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).files, 'package.json']) {
+    mkdirSync(dirname(join(pkg, f)), { recursive: true });
+    cpSync(join(root, f), join(pkg, f));
+  }
+  const server = await serve({ root: site, csp: CSP });
   const browser = await launchBrowser();
   try {
     const { page } = browser;
@@ -106,11 +115,12 @@ test('the package meshes in a module worker and aborts under a strict CSP', { sk
     const csp = browser.consoleMessages.filter((m) => /Content Security Policy|unsafe-eval/i.test(m.text));
     assert.deepEqual(csp, [], 'no CSP message on the console');
     const urls = browser.requests.map((r) => new URL(r.url).pathname);
-    assert.ok(urls.includes('/wasm/worker.mjs'), `the worker was loaded: ${urls.join(' ')}`);
-    assert.ok(urls.includes('/wasm/wqmesh.mjs'), 'the module was loaded');
+    assert.ok(urls.includes('/node_modules/wqmesh/wasm/worker.mjs'), `the worker was loaded: ${urls.join(' ')}`);
+    assert.ok(urls.includes('/node_modules/wqmesh/wasm/wqmesh.mjs'), 'the module was loaded');
     assert.ok(!first.mainThreadHasModule);
   } finally {
     await browser.close();
     await server.close();
+    rmSync(site, { recursive: true, force: true });
   }
 });
