@@ -188,27 +188,74 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
       reflex.push_back(i);
       is_reflex[i] = 1;
     }
-  // Bounded work: a polygon that needs more orientation tests than this is
+  // The reflex vertices in a uniform grid over the projection (beyond the
+  // paper, for large polygons): an ear candidate is tested against the ones
+  // in the cells its bounding box meets, not against all. Cells come from a
+  // monotone rounded map of the coordinates, so every point inside the box
+  // is in a visited cell; the test itself stays exact. Dead entries (clipped
+  // or no longer reflex) are skipped, and the grid is rebuilt, about as many
+  // cells as live reflex vertices, whenever their number has halved.
+  double lo[2] = {0, 0}, cell_scale[2] = {0, 0};
+  int cells = 1;
+  std::vector<std::vector<int>> grid(1);
+  std::size_t grid_built_for = 0;
+  auto cell_of = [&](const P2& p, int k) {
+    const double x = ((k == 0 ? p.x() : p.y()) - lo[k]) * cell_scale[k];
+    return x >= cells ? cells - 1 : x >= 0 ? static_cast<int>(x) : 0;  // NaN never arises
+  };
+  auto insert = [&](int r) { grid[cell_of(q[r], 0) * cells + cell_of(q[r], 1)].push_back(r); };
+  auto build_grid = [&] {
+    cells = 1;
+    while (static_cast<std::size_t>(cells) * cells < reflex.size() && cells < 1024) cells *= 2;
+    double hi[2] = {q[0].x(), q[0].y()};
+    lo[0] = hi[0], lo[1] = hi[1];
+    for (const P2& p : q) {
+      lo[0] = std::min(lo[0], p.x()), hi[0] = std::max(hi[0], p.x());
+      lo[1] = std::min(lo[1], p.y()), hi[1] = std::max(hi[1], p.y());
+    }
+    for (int k = 0; k < 2; ++k) {
+      const double extent = hi[k] - lo[k];
+      // An extent that is 0 or overflows: one column (sound, only slower).
+      cell_scale[k] = extent > 0 && std::isfinite(extent) && std::isfinite(cells / extent)
+                          ? cells / extent : 0;
+    }
+    grid.assign(static_cast<std::size_t>(cells) * cells, {});
+    for (int r : reflex) insert(r);
+    grid_built_for = reflex.size();
+  };
+  build_grid();
+  // Bounded work: a polygon that needs more ear-test steps than this is
   // rejected rather than left to run for minutes (README, Limits).
   long long budget = kMaxEarTests;
   auto is_ear = [&](int i) {
-    budget -= 1 + static_cast<long long>(reflex.size());
+    --budget;
     if (budget < 0)
       throw InputError(InputErrorKind::too_large,
                        "a polygon of " + std::to_string(n) + " vertices (" +
                            std::to_string(reflex.size()) +
                            " of them reflex) is too complex to triangulate: beyond the ear "
                            "clipping's budget of " +
-                           std::to_string(kMaxEarTests) + " vertex-in-ear tests per polygon");
+                           std::to_string(kMaxEarTests) + " ear-test steps per polygon");
     if (!convex(i)) return false;
+    if (reflex.empty()) return true;
     const int a = prev[i], c = next[i];
-    for (int r : reflex) {
-      if (removed[r] || !is_reflex[r] || r == a || r == c) continue;
-      // Inside or on the closed triangle (a, i, c), counter-clockwise.
-      if (orient2(q[a], q[i], q[r]) >= 0 && orient2(q[i], q[c], q[r]) >= 0 &&
-          orient2(q[c], q[a], q[r]) >= 0)
-        return false;
+    int from[2], to[2];
+    for (int k = 0; k < 2; ++k) {
+      const int ca = cell_of(q[a], k), ci = cell_of(q[i], k), cc = cell_of(q[c], k);
+      from[k] = std::min({ca, ci, cc}), to[k] = std::max({ca, ci, cc});
     }
+    for (int x = from[0]; x <= to[0]; ++x)
+      for (int y = from[1]; y <= to[1]; ++y) {
+        const auto& here = grid[static_cast<std::size_t>(x) * cells + y];
+        budget -= 1 + static_cast<long long>(here.size());
+        for (int r : here) {
+          if (removed[r] || !is_reflex[r] || r == a || r == c) continue;
+          // Inside or on the closed triangle (a, i, c), counter-clockwise.
+          if (orient2(q[a], q[i], q[r]) >= 0 && orient2(q[i], q[c], q[r]) >= 0 &&
+              orient2(q[c], q[a], q[r]) >= 0)
+            return false;
+        }
+      }
     return true;
   };
   auto compact = [&] {
@@ -216,6 +263,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
     for (int r : reflex)
       if (!removed[r] && is_reflex[r]) reflex[live++] = r;
     reflex.resize(live);
+    if (2 * reflex.size() < grid_built_for) build_grid();
   };
   int remaining = n;
   int cur = 0;
@@ -230,7 +278,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
       --remaining;
       for (int w : {a, c}) {
         const bool r = !convex(w);
-        if (r && !is_reflex[w]) reflex.push_back(w);  // only if not simple
+        if (r && !is_reflex[w]) reflex.push_back(w), insert(w);  // only if not simple
         is_reflex[w] = r;
       }
       since_last_ear = 0;

@@ -15,8 +15,8 @@ namespace wqmesh::validation {
 
 /// Work budgets (README, Limits): beyond them the input is refused with
 /// InputError(too_large) naming the budget. Ear clipping of one polygon: at
-/// most this many vertex-in-ear tests (1 + the live reflex vertices per ear
-/// candidate); the self-intersection test: at most this many candidate pairs
+/// most this many steps (1 per ear candidate, 1 per grid cell it visits and 1
+/// per reflex vertex listed there); the self-intersection test: at most this many candidate pairs
 /// of triangles with overlapping bounding boxes.
 constexpr long long kMaxEarTests = 60'000'000;
 constexpr long long kMaxOverlappingPairs = 200'000'000;

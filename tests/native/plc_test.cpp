@@ -727,5 +727,58 @@ TEST(Plc, SelfIntersectionPairs) {
 }
 
 
+// Large non-convex polygons: a star of 30,000 vertices (15,000 reflex) is
+// triangulated, its reflex vertices found through the grid of the ear test
+// (it used to exceed the ear-clipping budget after 6e7 tests and be refused
+// as too_large): n - 2 triangles turning the polygon's way whose areas add
+// up to the polygon's; a prism over a star is a valid PLC with the two stars
+// as facets.
+TEST(Plc, LargeStarPolygonsTriangulate) {
+  const int n = 30000;
+  std::vector<Point3> pts;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n, r = i % 2 ? 0.8 : 1;
+    pts.push_back({{r * std::cos(t), r * std::sin(t), 0}});
+  }
+  std::vector<int> poly(n);
+  std::iota(poly.begin(), poly.end(), 0);
+  std::vector<std::array<int, 3>> tris;
+  ASSERT_TRUE(validation::triangulate_polygon(pts, poly, tris));
+  ASSERT_EQ(tris.size(), static_cast<std::size_t>(n - 2));
+  auto area2 = [&](int a, int b, int c) {
+    return (pts[b][0] - pts[a][0]) * (pts[c][1] - pts[a][1]) -
+           (pts[b][1] - pts[a][1]) * (pts[c][0] - pts[a][0]);
+  };
+  double polygon = 0, sum = 0;
+  for (int i = 0; i < n; ++i)
+    polygon += pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1];
+  std::set<int> used;
+  for (const auto& t : tris) {
+    EXPECT_GT(area2(t[0], t[1], t[2]), 0);
+    sum += area2(t[0], t[1], t[2]);
+    used.insert(t.begin(), t.end());
+  }
+  EXPECT_NEAR(sum, polygon, 1e-9 * polygon);
+  EXPECT_EQ(used.size(), static_cast<std::size_t>(n));
+
+  // The prism over a smaller star (the self-intersection test of its radial
+  // slivers is not near-linear: their boxes overlap in about n^2 / 40 pairs).
+  const int m = 4000;
+  std::vector<Point3> prism;
+  for (int i = 0; i < m; ++i) {
+    const double t = 2 * M_PI * i / m, r = i % 2 ? 0.8 : 1;
+    prism.push_back({{r * std::cos(t), r * std::sin(t), 0}});
+  }
+  for (int i = 0; i < m; ++i) prism.push_back({{prism[i][0], prism[i][1], 1}});
+  std::vector<std::vector<int>> faces(2);
+  for (int i = m - 1; i >= 0; --i) faces[0].push_back(i);
+  for (int i = 0; i < m; ++i) faces[1].push_back(m + i);
+  for (int i = 0; i < m; ++i) faces.push_back({i, (i + 1) % m, m + (i + 1) % m, m + i});
+  Warnings warnings;
+  const PLC plc = build_plc(soup_of(prism, faces), warnings);
+  expect_valid_plc(plc);
+  EXPECT_EQ(plc.facets.size(), static_cast<std::size_t>(m + 2));
+}
+
 }  // namespace
 }  // namespace wqmesh
