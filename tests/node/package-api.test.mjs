@@ -8,7 +8,7 @@
 // - every broken model of ../shared/models rejected with the native kind as
 //   its `code`; empty, garbage, a 0-byte file, a path string, null, a
 //   misspelt option: each a clear error;
-// - abort in the middle of a long run, in each phase: an AbortError within
+// - abort in the middle of a run, in each phase (PUMP included): an AbortError within
 //   100 ms of the abort, and the next call succeeds; progress never goes
 //   down and the phases come in order;
 // - 100 calls in a row in one process: the module's live C++ bytes and its
@@ -213,13 +213,14 @@ test('empty, garbage, 0-byte file, path, null and misspelt option: clear errors'
 // A run of seconds: the box with a small size bound.
 const LONG = { maxSize: 0.02, maxVertices: 2000000 };
 
-for (const phase of ['initialize', 'conform', 'refine']) {
+// PUMP comes after REFINE: a shorter run (2 s) reaches it.
+for (const [phase, runOptions] of [['initialize', LONG], ['conform', LONG], ['refine', LONG], ['pump', { maxSize: 0.1 }]]) {
   test(`an abort during ${phase} rejects within 100 ms and the next call succeeds`, async () => {
     const controller = new AbortController();
     let abortedAt = 0;
     let seen = '';
     const box = example('box.off');
-    await assert.rejects(mesh(box, LONG, {
+    await assert.rejects(mesh(box, runOptions, {
       signal: controller.signal,
       onProgress: (p) => {
         if (!abortedAt && p.phase === phase && (phase !== 'refine' || p.vertices > 3000)) {
