@@ -70,7 +70,7 @@ if want fuzz; then
   need clang++-14
   build_folder fuzz "clang++-14, WQMESH_FUZZ: libFuzzer + ASan + UBSan, RelWithDebInfo" \
     env CXX=clang++-14 cmake -S . -B build/fuzz -DWQMESH_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo
-  say "fuzz targets: build/fuzz/bin/fuzz_{read_off,read_stl,build_plc}"
+  say "fuzz targets: build/fuzz/bin/fuzz_{read_off,read_stl,build_plc,mesh}"
 fi
 
 if want asan; then

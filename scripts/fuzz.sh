@@ -13,9 +13,13 @@
 # for build_plc. New inputs go to build/fuzz/corpus/TARGET, kept between runs.
 # Logs: build/fuzz/logs/TARGET.log.
 #
+# fuzz_mesh runs the mesher itself on small star-shaped polyhedra decoded
+# from the bytes (tests/fuzz/fuzz_mesh.cpp); it needs no seeds nor dictionary
+# (its corpus: build/fuzz/corpus/mesh and tests/fuzz/corpus/mesh).
+#
 # Usage: scripts/fuzz.sh [SECONDS] [TARGET...]
 #   SECONDS  run time of each target (default 20)
-#   TARGET   read_off, read_stl, build_plc (default: all three)
+#   TARGET   read_off, read_stl, build_plc, mesh (default: all four)
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -23,14 +27,14 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 seconds="${1:-20}"
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(read_off read_stl build_plc)
+[ ${#targets[@]} -eq 0 ] && targets=(read_off read_stl build_plc mesh)
 case "$seconds" in
   ''|*[!0-9]*) echo "fuzz: error: SECONDS must be a whole number, not '$seconds'" >&2; exit 2 ;;
 esac
 for t in "${targets[@]}"; do
   case "$t" in
-    read_off|read_stl|build_plc) ;;
-    *) echo "fuzz: error: unknown target '$t' (use read_off, read_stl or build_plc)" >&2; exit 2 ;;
+    read_off|read_stl|build_plc|mesh) ;;
+    *) echo "fuzz: error: unknown target '$t' (use read_off, read_stl, build_plc or mesh)" >&2; exit 2 ;;
   esac
   [ -x "build/fuzz/bin/fuzz_$t" ] || { echo "fuzz: error: build/fuzz/bin/fuzz_$t is missing (run scripts/build.sh fuzz)" >&2; exit 1; }
 done
@@ -49,12 +53,23 @@ for t in "${targets[@]}"; do
     read_off) seeds=(build/fuzz/seeds/off) ;;
     read_stl) seeds=(build/fuzz/seeds/stl) ;;
     build_plc) seeds=(build/fuzz/seeds/off build/fuzz/seeds/stl) ;;
+    mesh) seeds=() ;;
   esac
   mkdir -p "build/fuzz/corpus/$t"
   log="build/fuzz/logs/$t.log"
-  cmd=(build/fuzz/bin/fuzz_$t -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048
-       -print_final_stats=1 -dict=tests/fuzz/off_stl.dict -artifact_prefix="build/fuzz/artifacts/$t-"
-       "build/fuzz/corpus/$t" tests/fuzz/corpus "${seeds[@]}")
+  if [ "$t" = mesh ]; then
+    # Bytes decoded into a polyhedron: no dictionary; its own kept corpus.
+    kept=()
+    [ -d tests/fuzz/corpus/mesh ] && kept=(tests/fuzz/corpus/mesh)
+    # Inputs of every length at once (a polyhedron of 66 vertices reads 202 bytes).
+    cmd=(build/fuzz/bin/fuzz_$t -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048
+         -max_len=256 -len_control=0
+         -print_final_stats=1 -artifact_prefix="build/fuzz/artifacts/$t-" "build/fuzz/corpus/$t" "${kept[@]}")
+  else
+    cmd=(build/fuzz/bin/fuzz_$t -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048
+         -print_final_stats=1 -dict=tests/fuzz/off_stl.dict -artifact_prefix="build/fuzz/artifacts/$t-"
+         "build/fuzz/corpus/$t" tests/fuzz/corpus "${seeds[@]}")
+  fi
   say "${cmd[*]}"
   rc=0
   "${cmd[@]}" >"$log" 2>&1 || rc=$?
