@@ -201,7 +201,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
   std::size_t grid_built_for = 0;
   auto cell_of = [&](const P2& p, int k) {
     const double x = ((k == 0 ? p.x() : p.y()) - lo[k]) * cell_scale[k];
-    return x >= cells ? cells - 1 : x >= 0 ? static_cast<int>(x) : 0;  // NaN never arises
+    return x >= cells ? cells - 1 : x >= 0 ? static_cast<int>(x) : 0;  // (a NaN: column 0)
   };
   auto insert = [&](int r) { grid[cell_of(q[r], 0) * cells + cell_of(q[r], 1)].push_back(r); };
   auto build_grid = [&] {
