@@ -17,7 +17,7 @@
 #include <sstream>
 #include <string>
 
-#include "mesher_state.h"
+#include "mesher/mesher.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/input.h"
 #include "wqmesh/mesher.h"

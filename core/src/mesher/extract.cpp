@@ -1,23 +1,67 @@
-// wqmesh: WQMESH(P) (paper, section 4.3): the four phases in order, then the
-// tets inside the polyhedron, their classes and the statistics.
+// wqmesh: the tets inside the polyhedron (flood fill across the walls, the
+// input subfacets), their classes and statistics: the mesh WQMESH returns.
 // SPDX-License-Identifier: GPL-3.0-or-later
-#include "wqmesh/mesher.h"
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "mesher_state.h"
-#include "scaling.h"
+#include "mesher/mesher.h"
+#include "wqmesh/quality.h"
 
-namespace wqmesh {
+namespace wqmesh::mesher {
 
-namespace mesher {
+std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph& g, bool scan) {
+  // Flood fill from the infinite cells; the subfacets of input facets are the
+  // walls.
+  std::unordered_set<Tri, TriHash> walls;
+  for (const Subfacet& h : subfacets())
+    if (!dom_.is_box_facet(h.facet)) walls.insert(sorted(h.v));
+  // Crossing a wall flips inside and outside (a polyhedron may have several
+  // shells). 1 = inside.
+  std::vector<char> label(g.cells.size(), 2);  // 2 = unknown
+  std::vector<int> stack;
+  for (std::size_t i = 0; i < g.cells.size(); ++i)
+    if (std::find(g.cells[i].begin(), g.cells[i].end(), kInfinite) != g.cells[i].end()) {
+      label[i] = 0;
+      stack.push_back(static_cast<int>(i));
+    }
+  // Each cell is pushed once (labelled when pushed): at most |cells| pops.
+  while (!stack.empty()) {
+    if (scan && !poll(1, false)) return label;
+    const int c = stack.back();
+    stack.pop_back();
+    for (int k = 0; k < 4; ++k) {
+      const int n = g.neighbor[c][k];
+      if (label[n] != 2) continue;
+      const Tet& t = g.cells[c];
+      const Tri f = sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}});
+      label[n] = walls.count(f) ? char(1 - label[c]) : label[c];
+      stack.push_back(n);
+    }
+  }
+  // Flat tets lying in an input facet pass the labels on correctly whatever
+  // their own label; they belong to neither side and are left out.
+  for (std::size_t i = 0; i < g.cells.size(); ++i)
+    if (label[i] == 1 && flat_on_facet(g.cells[i])) label[i] = 0;
+  return label;
+}
+
+bool Mesher::flat_on_facet(const Tet& t) const {
+  if (std::find(t.begin(), t.end(), kInfinite) != t.end()) return false;
+  std::vector<int> common, fs;
+  facets_of(t[0], common);
+  for (int k = 1; k < 4 && !common.empty(); ++k) {
+    facets_of(t[k], fs);
+    common.erase(std::remove_if(common.begin(), common.end(),
+                                [&](int f) { return std::find(fs.begin(), fs.end(), f) == fs.end(); }),
+                 common.end());
+  }
+  for (int f : common)
+    if (!dom_.is_box_facet(f)) return true;
+  return false;
+}
 
 namespace {
 
@@ -76,6 +120,9 @@ RegularTriangulation::CellGraph canonical(const RegularTriangulation::CellGraph&
 /// rounding of a facet may be given either side. Facets are found through a
 /// uniform yz grid; `budget` counts the loop edges tested and the answer is
 /// -1 once it is spent.
+/// The yz grid of RayParity has at most kRayGridCells cells a side.
+constexpr int kRayGridCells = 256;
+
 class RayParity {
  public:
   RayParity(const PLC& p, int facets) : p_(p) {
@@ -97,7 +144,7 @@ class RayParity {
       lo_ = {{std::min(lo_[0], b[0]), std::min(lo_[1], b[2])}};
       hi_ = {{std::max(hi_[0], b[1]), std::max(hi_[1], b[3])}};
     }
-    n_ = std::max(1, std::min(256, static_cast<int>(std::sqrt(double(used_.size()))) + 1));
+    n_ = std::max(1, std::min(kRayGridCells, static_cast<int>(std::sqrt(double(used_.size()))) + 1));
     grid_.assign(static_cast<std::size_t>(n_) * n_, {});
     for (std::size_t i = 0; i < used_.size(); ++i) {
       const int y0 = cell(boxes[i][0], 0), y1 = cell(boxes[i][1], 0);
@@ -157,7 +204,7 @@ MeshResult Mesher::extract() {
   MeshResult r;
   r.stopped = stop_reason_;
   r.conforming = conforms();
-  r.protecting_balls = balls_;
+  r.protecting_balls = balls_.all();
   if (nn_.size() != verts_.size()) {
     nn_.resize(verts_.size());
     for (std::size_t v = 0; v < verts_.size(); ++v) nn_[v] = nearest_neighbour(static_cast<int>(v));
@@ -220,9 +267,8 @@ MeshResult Mesher::extract() {
       mesh.vertices.push_back(tri_.point(v));
       if (weighted) mesh.weights.push_back(tri_.weight(v));
       r.nearest_neighbour.push_back(nn_[v]);
-      r.input_vertex.push_back(verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices
-                                   ? verts_[v].element
-                                   : -1);
+      r.input_vertex.push_back(verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices ? verts_[v].element
+                                                                                                     : -1);
     }
     return new_id[v];
   };
@@ -253,12 +299,12 @@ MeshResult Mesher::extract() {
     if (!skinny && !sliver) continue;
     const auto& t = mesh.tets[i];
     double r2;
-    const Point3 z = circumcenter(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]],
-                                  mesh.vertices[t[3]], r2);
-    bool near = in_protecting_ball(z);
+    const Point3 z =
+        circumcenter(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], r2);
+    bool near = balls_.contains(z);
     for (int k = 0; k < 4 && !near; ++k) {
       const double n = r.nearest_neighbour[t[k]];
-      near = encroaches_expanded_ball(mesh.vertices[t[k]], n * n / 9);
+      near = balls_.expansion_encroached(mesh.vertices[t[k]], n * n / 9);
     }
     r.tet_class[i] = !near ? TetClass::violation : skinny ? TetClass::skinny_near : TetClass::sliver_near;
     r.slivers += sliver;
@@ -269,186 +315,4 @@ MeshResult Mesher::extract() {
   return r;
 }
 
-}  // namespace mesher
-
-PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis) {
-  // Two input edges e1, e2 leave the sharp vertex u at angle t. At distance d
-  // from u, e2 passes within d sin t of e1, so a subsegment of e1 there of
-  // length s > 2 d sin t / (1 - sin t) has e2 through its diametric ball, and
-  // once e2 is split as finely, a vertex of e2 in it: rule 1 (SPLITE, section
-  // 4.2) splits it. Outside the vertex ball (radius f(u)/4, section 4.1) and up
-  // to L, the length of the shorter edge, e1 ends with subsegments of length
-  // about 2 d sin t, so about ln(4 L / f(u)) / (2 sin t) vertices; we take
-  // a quarter of that, ln(4 L / f(u)) / (8 sin t), as a safe lower estimate.
-  PointEstimate best;
-  std::vector<double> f(plc.vertices.size(), 0);
-  for (std::size_t i = 0; i < analysis.sharp_vertices.size(); ++i) f[analysis.sharp_vertices[i]] = analysis.lfs[i];
-  auto length = [&](int e) {
-    const Point3& a = plc.vertices[plc.edges[e].a];
-    const Point3& b = plc.vertices[plc.edges[e].b];
-    return std::sqrt(mesher::dist2(a, b));
-  };
-  for (const EdgeEdgeAngle& a : analysis.edge_edge) {
-    if (!a.acute || f[a.vertex] <= 0) continue;
-    const double L = std::min(length(a.edge1), length(a.edge2));
-    const double r = f[a.vertex] / 4;
-    const double s = std::sin(a.degrees * M_PI / 180);
-    if (!(L > r) || !(s > 0)) continue;
-    const double n = std::log(L / r) / (8 * s);
-    if (n > best.points) best = {n, a.vertex, a.edge1, a.edge2, a.degrees};
-  }
-  return best;
-}
-
-/// WQMESH on a normalised input (see mesh_polyhedron below): coordinates at
-/// most 2 in absolute value.
-static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
-                                  const ProgressCallback& progress) {
-  using clock = std::chrono::steady_clock;
-  // Runs that cannot fit the vertex limit are refused before meshing, with
-  // the reason, instead of refining for minutes towards the limit.
-  auto refuse = [&](const std::string& message) {
-    MeshResult r;
-    r.stopped = "limit";
-    r.stop_message = message;
-    r.input_points = plc.vertices.size();
-    r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
-    return r;
-  };
-  const PointEstimate need = estimate_edge_points(plc, analysis);
-  if (need.points > double(options.max_vertices)) {
-    const PlcEdge& e1 = plc.edges[need.edge1];
-    const PlcEdge& e2 = plc.edges[need.edge2];
-    char text[400];
-    std::snprintf(text, sizeof text,
-                  "the input edges %d (vertices %d-%d) and %d (vertices %d-%d) meet at vertex %d at %.3g degrees: "
-                  "a conforming mesh needs at least about %.3g vertices along them, more than the vertex limit %zu",
-                  need.edge1, e1.a, e1.b, need.edge2, e2.a, e2.b, need.vertex, need.degrees, need.points,
-                  options.max_vertices);
-    return refuse(text);
-  }
-  const mesher::Domain domain(plc, analysis);
-  // INITIALIZE's vertex count is known in advance (section 4.1); each later
-  // phase stops at the limit by itself.
-  const std::size_t initial = domain.initialize_points();
-  if (initial > options.max_vertices) {
-    char text[300];
-    std::snprintf(text, sizeof text,
-                  "INITIALIZE alone inserts %zu vertices (the input vertices and the bounding box corners, the "
-                  "vertex-ball points and the SOS splits of %zu sharp vertices), more than the vertex limit %zu",
-                  initial, analysis.sharp_vertices.size(), options.max_vertices);
-    return refuse(text);
-  }
-  mesher::Mesher m(domain, options, progress);
-  std::vector<PhaseStats> phases;
-  std::size_t last_count = 0;
-  auto run = [&](const char* name, auto&& step) {
-    if (m.stopped()) return;
-    if (progress) {
-      Progress p;
-      p.phase = name;
-      p.vertices = m.vertices().size();
-      if (!progress(p)) {
-        m.cancel();
-        return;
-      }
-    }
-    const auto t0 = clock::now();
-    // A walk past its stated bound (LoopBoundError, triangulation.h) is an
-    // internal error: named with the phase, the loop and the vertex.
-    try {
-      step();
-    } catch (const LoopBoundError& e) {
-      throw std::runtime_error(std::string("internal error in ") + name + ": " + e.what());
-    }
-    PhaseStats s;
-    s.name = name;
-    s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
-    s.points_inserted = m.vertices().size() - last_count;
-    last_count = m.vertices().size();
-    phases.push_back(s);
-  };
-  run("initialize", [&] { m.initialize(); });
-  run("conform", [&] { m.conform(); });
-  run("refine", [&] { m.refine(); });
-  std::size_t slivers_qmesh = 0;
-  if (options.pump && !m.stopped()) {
-    // Count the inside slivers QMESH would leave, then PUMP.
-    MeshResult before = m.extract();
-    slivers_qmesh = before.slivers;
-    run("pump", [&] { m.pump(); });
-  }
-  MeshResult r;
-  const auto t0 = clock::now();
-  r = m.extract();
-  PhaseStats s;
-  s.name = "extract";
-  s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
-  phases.push_back(s);
-  r.phases = phases;
-  if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
-  if (r.stopped == "limit" && r.stop_message.empty()) {
-    char text[200];
-    std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,
-                  phases.size() >= 2 ? phases[phases.size() - 2].name.c_str() : "initialize");
-    r.stop_message = text;
-  }
-  r.input_points = plc.vertices.size();
-  r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
-  r.points_inserted = m.vertices().size() - domain.p.vertices.size();
-  r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
-  r.pumped_vertices = m.pumped_vertices;
-  r.rule_points = m.rule_count;
-  r.all_vertices = m.vertices().size();
-  if (options.measure_floor) {
-    std::vector<Point3> points(m.vertices().size());
-    for (std::size_t v = 0; v < points.size(); ++v) points[v] = m.triangulation().point(static_cast<int>(v));
-    const auto f0 = clock::now();
-    RegularTriangulation floor;
-    floor.insert_all(points);
-    r.delaunay_floor_s = std::chrono::duration<double>(clock::now() - f0).count();
-  }
-  return r;
-}
-
-MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
-                           const ProgressCallback& progress) {
-  // Beyond the paper: the run works on the input scaled by 2^-E (exact; see
-  // scaling.h), so that no formula of the mesher overflows or underflows, and
-  // every output length is scaled back by 2^E (weights by 2^2E, volumes by
-  // 2^3E): the input vertices come out at their exact input coordinates.
-  const int E = normalisation_exponent(plc);
-  MeshResult r;
-  if (E == 0) {
-    r = mesh_normalised(plc, analysis, options, progress);
-  } else {
-    const PLC scaled = scaled_plc(plc, -E);
-    Analysis a = analysis;
-    scale_analysis(a, -E);
-    MeshOptions o = options;
-    o.max_size = std::ldexp(options.max_size, -E);
-    r = mesh_normalised(scaled, a, o, progress);
-    for (Point3& p : r.mesh.vertices)
-      for (double& x : p) x = std::ldexp(x, E);
-    for (double& w : r.mesh.weights) w = std::ldexp(w, 2 * E);
-    for (double& n : r.nearest_neighbour) n = std::ldexp(n, E);
-    for (ProtectingBall& b : r.protecting_balls) {
-      for (double& x : b.center) x = std::ldexp(x, E);
-      b.radius = std::ldexp(b.radius, E);
-    }
-    for (TetQuality& q : r.quality) {
-      q.volume = std::ldexp(q.volume, 3 * E);
-      q.radius = std::ldexp(q.radius, E);
-      q.shortest_edge = std::ldexp(q.shortest_edge, E);
-      q.longest_edge = std::ldexp(q.longest_edge, E);
-      q.inradius = std::ldexp(q.inradius, E);
-    }
-  }
-  // A valid polyhedron always has interior tets once a run is done: none is
-  // a bug (the symptom of a lost inside/outside labelling), not a result.
-  if (r.stopped.empty() && r.mesh.tets.empty())
-    throw std::runtime_error("internal error: the run finished with no tet inside the polyhedron");
-  return r;
-}
-
-}  // namespace wqmesh
+}  // namespace wqmesh::mesher

@@ -11,7 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "mesher_state.h"
+#include "mesher/pump.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
@@ -23,47 +23,30 @@ TetKey key_of(Tet t) {
   return t;
 }
 
-// The orthocenter z and orthoradius^2 of four weighted points.
+// The orthosphere of the four weighted vertices of t (geometry.h).
 bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, double& z2) {
-  const Point3& p0 = tri.point(t[0]);
-  const double w0 = tri.weight(t[0]);
-  double m[3][4];
-  for (int r = 0; r < 3; ++r) {
-    const Point3& p = tri.point(t[r + 1]);
-    for (int k = 0; k < 3; ++k) m[r][k] = 2 * (p[k] - p0[k]);
-    m[r][3] = dot(p, p) - tri.weight(t[r + 1]) - dot(p0, p0) + w0;
-  }
-  for (int col = 0; col < 3; ++col) {
-    int piv = col;
-    for (int r = col + 1; r < 3; ++r)
-      if (std::fabs(m[r][col]) > std::fabs(m[piv][col])) piv = r;
-    if (m[piv][col] == 0) return false;
-    std::swap(m[col], m[piv]);
-    for (int r = 0; r < 3; ++r)
-      if (r != col) {
-        const double f = m[r][col] / m[col][col];
-        for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
-      }
-  }
-  z = {{m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]}};
-  z2 = dist2(p0, z) - w0;
-  return true;
+  const Point3 p[4] = {tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3])};
+  const double w[4] = {tri.weight(t[0]), tri.weight(t[1]), tri.weight(t[2]), tri.weight(t[3])};
+  return geometry::orthosphere(p, w, z, z2);
 }
 
 }  // namespace
 
-Pump::Pump(Mesher& m) : m_(m), tri_(m.tri_) {}
+Pump::Pump(Mesher& m) : m_(m), tri_(m.weighted_triangulation()) {}
 
 void Pump::prepare() {
   // N(v), the nearest-neighbour distance in the unweighted Del V at the end
   // of REFINE; it bounds the weights and does not change when they do.
   // A scan of the whole mesh: it polls, and stops early (m_.stopped()) when
   // the run must stop; run() then does nothing more.
-  m_.nn_.resize(m_.verts_.size());
-  for (std::size_t v = 0; v < m_.verts_.size(); ++v) {
-    if (!m_.poll(1, false)) return;
-    m_.nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
+  const std::size_t nv = m_.vertices().size();
+  nn_.assign(nv, 0);
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!m_.poll(1, false)) break;
+    nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
   }
+  m_.set_nearest_neighbours(nn_);
+  if (m_.stopped()) return;
   const RegularTriangulation::CellGraph g = m_.scan_cell_graph();
   if (m_.stopped()) return;
   const std::vector<char> inside = m_.interior_labels(g, true);
@@ -79,37 +62,37 @@ void Pump::prepare() {
     if (!m_.poll(1, false)) return;
     if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
     const double a = angle_of(g.cells[i]);
-    if (a <= m_.opt_.theta_deg)
+    if (a <= m_.options().theta_deg)
       for (int v : g.cells[i]) candidates_.push_back({a, v});
   }
   std::sort(candidates_.begin(), candidates_.end());
   walls_.clear();
-  vertex_facets_.assign(m_.verts_.size(), {});
+  vertex_facets_.assign(m_.vertices().size(), {});
   for (const Subfacet& h : m_.subfacets()) {
     const Tri s = sorted(h.v);
-    if (!m_.dom_.is_box_facet(h.facet)) walls_.insert(s);
+    if (!m_.domain().is_box_facet(h.facet)) walls_.insert(s);
     for (int x : h.v) vertex_facets_[x].push_back(s);
   }
 }
 
 std::vector<std::pair<double, int>> Pump::candidates() const { return candidates_; }
 
-double Pump::weight_bound(int v) const { return m_.nn_[v] * m_.nn_[v] / 9; }
+double Pump::weight_bound(int v) const { return nn_[v] * nn_[v] / 9; }
 
 void Pump::run() {
   prepare();
   if (m_.stopped()) return;
   std::vector<std::pair<double, int>> cand = candidates();
-  for (int pass = 0; pass < m_.opt_.max_pump_passes && !cand.empty(); ++pass) {
+  for (int pass = 0; pass < m_.options().max_pump_passes && !cand.empty(); ++pass) {
     std::sort(cand.begin(), cand.end());
-    std::vector<char> seen(m_.verts_.size(), 0);
+    std::vector<char> seen(m_.vertices().size(), 0);
     std::vector<std::pair<double, int>> next;
     bool improved = false;
     for (const auto& [a, v] : cand) {
       if (seen[v]) continue;
       seen[v] = 1;
       if (!m_.tick()) return;
-      if (m_.encroaches_expanded_ball(tri_.point(v), weight_bound(v))) continue;
+      if (m_.balls().expansion_encroached(tri_.point(v), weight_bound(v))) continue;
       const Choice c = pump_vertex(v);
       if (c.quality > c.base) improved = true;
       // Slivers left or made around v are visited in the next pass.
@@ -118,14 +101,14 @@ void Pump::run() {
       for (const Tet& t : star) {
         if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
         const double b = angle_of(t);
-        if (b <= m_.opt_.theta_deg)
+        if (b <= m_.options().theta_deg)
           for (int x : t) next.push_back({b, x});
       }
     }
     if (!improved) break;
     cand.swap(next);
   }
-  for (std::size_t v = 0; v < m_.verts_.size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
+  for (std::size_t v = 0; v < m_.vertices().size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
 }
 
 double Pump::angle_of(const Tet& t) const {
@@ -141,10 +124,9 @@ char Pump::label(const Tet& t) {
   if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
   const auto it = labels_.find(key_of(t));
   if (it != labels_.end()) return it->second;
-  // At most kRounds rounds, each over a deduplicated list of cells.
-  constexpr int kRounds = 64;
+  // At most kLabelRounds rounds, each over a deduplicated list of cells.
   std::vector<Tet> todo{t};
-  for (int round = 0; round < kRounds && !todo.empty(); ++round) {
+  for (int round = 0; round < kLabelRounds && !todo.empty(); ++round) {
     std::sort(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) < key_of(b); });
     todo.erase(std::unique(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) == key_of(b); }),
                todo.end());
@@ -180,6 +162,7 @@ char Pump::label(const Tet& t) {
     todo.swap(later);
   }
   const auto jt = labels_.find(key_of(t));
+  if (jt == labels_.end()) ++m_.caps_reached;  // kLabelRounds: taken as outside
   return jt != labels_.end() ? jt->second : 0;
 }
 
@@ -191,7 +174,7 @@ Pump::Features Pump::features_around(int v) const {
   ring.push_back(v);
   Features f;
   for (int x : ring) {
-    for (std::uint64_t k : m_.vertex_segs_[x]) f.segments.push_back(k);
+    for (std::uint64_t k : m_.subsegments_at(x)) f.segments.push_back(k);
     for (const Tri& t : vertex_facets_[x]) f.subfacets.push_back(t);
   }
   std::sort(f.segments.begin(), f.segments.end());
@@ -203,7 +186,7 @@ Pump::Features Pump::features_around(int v) const {
 
 bool Pump::present(const Features& f) const {
   for (std::uint64_t k : f.segments) {
-    const Subsegment& s = m_.segs_.at(k);
+    const Subsegment& s = m_.subsegment(k);
     if (!tri_.is_edge(s.a, s.b)) return false;
   }
   for (const Tri& t : f.subfacets)
@@ -266,10 +249,9 @@ Pump::Choice Pump::pump_vertex(int v) {
   // the star, hence the smallest angle, does not change: one sample each.
   double cw = 0;
   tri_.set_weight(v, cw);  // only the star at cw matters to next_critical
-  // At most kSteps critical weights are visited (a choice: stars change at
-  // a few dozen weights in practice).
-  constexpr int kSteps = 256;
-  for (int step = 0; step < kSteps; ++step) {
+  // At most kCriticalSteps critical weights are visited (pump.h).
+  int step = 0;
+  for (; step < kCriticalSteps; ++step) {
     const double c = next_critical(v, cw, wmax);
     const double sample = 0.5 * (cw + c);
     const double q = evaluate(v, sample, f);
@@ -282,6 +264,7 @@ Pump::Choice Pump::pump_vertex(int v) {
     if (cw >= wmax) break;
     tri_.set_weight(v, cw);
   }
+  if (step == kCriticalSteps) ++m_.caps_reached;
   evaluate(v, choice.weight, f);
   return choice;
 }

@@ -1,39 +1,14 @@
-// wqmesh: subsegments and subfacets (paper, section 4): their encroachment,
-// SPLITE, SPLITF and ENCROACH (sections 4.2 and 4.3), the protecting balls, and
+// wqmesh: the subcomplex (paper, section 4): subsegments and subfacets, their
+// encroachment, SPLITE and SPLITF (section 4.2), ENCROACH (section 4.3), and
 // the insertion of a vertex into V.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 
-#include "mesher_state.h"
+#include "mesher/mesher.h"
 
 namespace wqmesh::mesher {
-
-Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressCallback& progress)
-    : dom_(domain), opt_(options), progress_(progress) {
-  trace_ = std::getenv("WQMESH_TRACE") != nullptr;
-  facet_dt_.resize(domain.p.facets.size());
-  // Each facet's planar triangulation projects along the largest component of
-  // its normal and tests circles in the plane's metric (see PlanarDelaunay):
-  // points collinear in 3D stay collinear there, and no point is hidden.
-  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) facet_dt_[f].set_plane(domain.p.facets[f].normal);
-  vertex_sectors_.assign(domain.p.vertices.size(), {});
-}
-
-void Mesher::trace(const Insertion& ins, int rule, int id) const {
-  double len = 0;
-  if (ins.has_segment) {
-    const int a = int(ins.split_segment >> 32), b = int(ins.split_segment & 0xFFFFFFFFu);
-    len = std::sqrt(dist2(tri_.point(a), tri_.point(b)));
-  }
-  static const char* kOn[] = {"vertex", "edge", "facet", "free"};
-  std::fprintf(stderr, "wqmesh trace: rule %d -> %d on %s %d at (%.17g, %.17g, %.17g) split %s length %g\n", rule,
-               id, kOn[int(ins.on)], ins.element, ins.p[0], ins.p[1], ins.p[2],
-               ins.has_segment ? (ins.sector >= 0 ? "shield" : "subsegment") : "-", len);
-}
 
 // ---- bookkeeping -----------------------------------------------------------------
 
@@ -46,7 +21,7 @@ void Mesher::add_segment(const Subsegment& s) {
     if (sector_segs_.size() <= std::size_t(s.sector)) sector_segs_.resize(s.sector + 1);
     sector_segs_[s.sector].push_back(k);
   }
-  seg_queue_.push_back(k);
+  queues_.segments.push_back(k);
 }
 
 void Mesher::facets_of(int v, std::vector<int>& out) const {
@@ -86,8 +61,7 @@ bool Mesher::lies_in_facet(int f, const Tri& t) const {
 
 void Mesher::subfacets_at(int f, int v, std::vector<Tri>& out) const {
   facet_dt_[f].incident_triangles(v, out);
-  out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }),
-            out.end());
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }), out.end());
 }
 
 bool Mesher::is_subfacet(int f, const Tri& t) const {
@@ -197,8 +171,7 @@ bool Mesher::subfacet_encroached(const Subfacet& h) const {
   const Point3 cc = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
   for (const Tet* c : {&c1, &c2})
     for (int x : *c)
-      if (x != kInfinite && x != h.v[0] && x != h.v[1] && x != h.v[2] && dist2(tri_.point(x), cc) < r2)
-        return true;
+      if (x != kInfinite && x != h.v[0] && x != h.v[1] && x != h.v[2] && dist2(tri_.point(x), cc) < r2) return true;
   return false;
 }
 
@@ -240,8 +213,7 @@ void Mesher::encroached_by_point(const Point3& c, int hint, std::vector<std::uin
     facets_of(t[1], f1);
     facets_of(t[2], f2);
     for (int f : f0) {
-      if (std::find(f1.begin(), f1.end(), f) == f1.end() || std::find(f2.begin(), f2.end(), f) == f2.end())
-        continue;
+      if (std::find(f1.begin(), f1.end(), f) == f1.end() || std::find(f2.begin(), f2.end(), f) == f2.end()) continue;
       if (!is_subfacet(f, t)) continue;
       double r2;
       const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
@@ -309,7 +281,7 @@ Insertion Mesher::splitf(const Subfacet& h) {
           if (s.facet != h.facet) continue;
           const Point3 d = sub(c, s.center);
           double t = std::atan2(dot(d, s.e2), dot(d, s.e1));
-          if (t < 0) t += 2 * 3.14159265358979323846;
+          if (t < 0) t += 2 * kPi;
           if (t > s.span) continue;
           for (const std::uint64_t k : shield_keys(sid)) {
             const Subsegment& g = segs_.at(k);
@@ -331,8 +303,8 @@ Insertion Mesher::splitf(const Subfacet& h) {
     for (std::uint64_t k : segs) {
       const Subsegment& g = segs_.at(k);
       const int owner_facet = g.sector >= 0 ? sectors_[g.sector].facet : -1;
-      const bool on_boundary = g.edge >= 0 && (dom_.p.edges[g.edge].facets[0] == h.facet ||
-                                               dom_.p.edges[g.edge].facets[1] == h.facet);
+      const bool on_boundary =
+          g.edge >= 0 && (dom_.p.edges[g.edge].facets[0] == h.facet || dom_.p.edges[g.edge].facets[1] == h.facet);
       if (owner_facet == h.facet || on_boundary) {
         pick = k;
         break;
@@ -387,106 +359,11 @@ Insertion Mesher::encroach(const Point3& c, int hint) {
   return ins;
 }
 
-// ---- protecting balls ---------------------------------------------------------------
-
-void Mesher::make_protecting_balls() {
-  balls_.clear();
-  for (int u = 0; u < static_cast<int>(dom_.p.vertices.size()); ++u)
-    if (dom_.ball_radius[u] > 0) balls_.push_back({dom_.p.vertices[u], dom_.ball_radius[u], true});
-  // At the end of CONFORM, the diametric balls of sharp subsegments doubled.
-  std::vector<std::uint64_t> keys;
-  for (const auto& [k, s] : segs_)
-    if (s.sharp) keys.push_back(k);
-  std::sort(keys.begin(), keys.end());
-  for (std::uint64_t k : keys) {
-    const Subsegment& s = segs_.at(k);
-    const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);
-    balls_.push_back({midpoint(a, b), std::sqrt(dist2(a, b)), false});
-  }
-  protecting_ = true;
-  index_balls();
-}
-
-namespace {
-std::uint64_t cell_key(long long i, long long j, long long k) {
-  const auto m = [](long long x) { return std::uint64_t(x + (1 << 20)) & 0x1FFFFF; };
-  return (m(i) << 42) | (m(j) << 21) | m(k);
-}
-}  // namespace
-
-void Mesher::index_balls() {
-  ball_grid_.clear();
-  const Point3 ext = sub(dom_.box.hi, dom_.box.lo);
-  const double diag = std::sqrt(dot(ext, ext));
-  double sum = 0;
-  for (const ProtectingBall& b : balls_) sum += 4 * b.radius;
-  ball_cell_ = std::max(diag / 256, balls_.empty() ? diag : sum / balls_.size());
-  for (int i = 0; i < static_cast<int>(balls_.size()); ++i) {
-    const ProtectingBall& b = balls_[i];
-    const double r = 2 * b.radius;
-    long long lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = static_cast<long long>(std::floor((b.center[d] - r - dom_.box.lo[d]) / ball_cell_));
-      hi[d] = static_cast<long long>(std::floor((b.center[d] + r - dom_.box.lo[d]) / ball_cell_));
-    }
-    for (long long x = lo[0]; x <= hi[0]; ++x)
-      for (long long y = lo[1]; y <= hi[1]; ++y)
-        for (long long z = lo[2]; z <= hi[2]; ++z) ball_grid_[cell_key(x, y, z)].push_back(i);
-  }
-}
-
-template <class F>
-void Mesher::for_balls_near(const Point3& x, double reach, F&& f) const {
-  long long lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) {
-    lo[d] = static_cast<long long>(std::floor((x[d] - reach - dom_.box.lo[d]) / ball_cell_));
-    hi[d] = static_cast<long long>(std::floor((x[d] + reach - dom_.box.lo[d]) / ball_cell_));
-  }
-  const double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
-  if (cells > double(balls_.size())) {  // a long reach: look at every ball
-    for (const ProtectingBall& b : balls_)
-      if (f(b)) return;
-    return;
-  }
-  for (long long i = lo[0]; i <= hi[0]; ++i)
-    for (long long j = lo[1]; j <= hi[1]; ++j)
-      for (long long k = lo[2]; k <= hi[2]; ++k) {
-        const auto it = ball_grid_.find(cell_key(i, j, k));
-        if (it == ball_grid_.end()) continue;
-        for (int b : it->second)
-          if (f(balls_[b])) return;
-      }
-}
-
-bool Mesher::in_protecting_ball(const Point3& x) const {
-  bool hit = false;
-  for_balls_near(x, 0, [&](const ProtectingBall& b) {
-    hit = dist2(x, b.center) <= b.radius * b.radius;
-    return hit;
-  });
-  return hit;
-}
-
-bool Mesher::encroaches_expanded_ball(const Point3& v, double w) const {
-  bool hit = false;
-  for_balls_near(v, std::sqrt(w), [&](const ProtectingBall& b) {
-    hit = dist2(v, b.center) <= 4 * b.radius * b.radius + w;
-    return hit;
-  });
-  return hit;
-}
-
 bool Mesher::guarded(const Subfacet& h) const {
   // A subfacet is guarded when its diametric ball lies inside a protecting ball.
   double r2;
   const Point3 c = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
-  const double r = std::sqrt(r2);
-  bool hit = false;
-  for_balls_near(c, 0, [&](const ProtectingBall& b) {
-    hit = std::sqrt(dist2(c, b.center)) + r <= b.radius;
-    return hit;
-  });
-  return hit;
+  return balls_.guards(c, r2);
 }
 
 double Mesher::nearest_neighbour(int v) const {

@@ -1,0 +1,130 @@
+// wqmesh: CONFORM (paper, section 4.3): rules 1-3 until the edges and facets
+// of P are unions of Delaunay edges and triangles, then the protecting balls.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "mesher/mesher.h"
+
+namespace wqmesh::mesher {
+
+void Mesher::conform() {
+  phase_ = Phase::conform;
+  for (const auto& [k, s] : segs_) queues_.segments.push_back(k);
+  for (const Subfacet& h : subfacets()) queues_.subfacets.push_back(h);
+  std::sort(queues_.segments.begin(), queues_.segments.end());
+  if (!process_queues(false)) return;
+  if (opt_.max_size > 0 && !split_long_sharp_subsegments()) return;
+  // Rule 3 passes until one inserts nothing, at most Caps::kRule3Passes.
+  int passes = 0;
+  while (stop_reason_.empty() && passes < Caps::kRule3Passes && rule3_pass()) ++passes;
+  if (passes == Caps::kRule3Passes) ++caps_reached;
+  make_protecting_balls();
+}
+
+bool Mesher::rule3_pass() {
+  // Rule 3: the midpoint of a sharp subsegment s on edge e that encroaches a
+  // subsegment or subfacet h, h and e in disjoint elements of P: split h.
+  std::vector<std::uint64_t> keys;
+  for (const auto& [k, s] : segs_)
+    if (s.sharp) keys.push_back(k);
+  std::sort(keys.begin(), keys.end());
+  bool acted = false;
+  std::vector<std::uint64_t> segs;
+  std::vector<Subfacet> facets;
+  for (std::uint64_t k : keys) {
+    step_done();
+    if (!poll(1)) break;
+    const auto it = segs_.find(k);
+    if (it == segs_.end()) continue;
+    const Subsegment s = it->second;
+    const int ea = dom_.p.edges[s.edge].a, eb = dom_.p.edges[s.edge].b;
+    const Point3 m = midpoint(tri_.point(s.a), tri_.point(s.b));
+    encroached_by_point(m, s.a, segs, facets);
+    auto disjoint_facet = [&](int f) { return !dom_.facet_has_vertex(f, ea) && !dom_.facet_has_vertex(f, eb); };
+    Insertion ins;
+    bool found = false;
+    for (std::uint64_t g : segs) {
+      if (g == k) continue;
+      const Subsegment& gs = segs_.at(g);
+      const bool disjoint =
+          gs.sector >= 0 ? disjoint_facet(sectors_[gs.sector].facet)
+                         : (gs.edge != s.edge && dom_.p.edges[gs.edge].a != ea && dom_.p.edges[gs.edge].a != eb &&
+                            dom_.p.edges[gs.edge].b != ea && dom_.p.edges[gs.edge].b != eb);
+      if (disjoint) {
+        ins = splite(gs);
+        found = true;
+        break;
+      }
+    }
+    if (!found)
+      for (const Subfacet& h : facets)
+        if (disjoint_facet(h.facet)) {
+          ins = splitf(h);
+          found = true;
+          break;
+        }
+    if (found && insert(ins, Rule::rule3_split_near_sharp_subsegment) >= 0) {
+      acted = true;
+      tick();
+      if (!process_queues(false)) break;
+    }
+  }
+  return acted;
+}
+
+bool Mesher::split_long_sharp_subsegments() {
+  // Beyond the paper: the size bound max_size of rule 6. Rule 6 never inserts
+  // inside a protecting ball, and the ball of a sharp subsegment ab has radius
+  // |ab| (make_protecting_balls), so near a long sharp edge the bound would go
+  // unmet. A tet whose circumcenter z lies in that ball has a or b on or
+  // outside its circumsphere, so its circumradius is at most |z - a| <= 1.5 |ab|:
+  // splitting every sharp subsegment longer than 2/3 max_size, at its midpoint
+  // as rule 1 does, keeps those tets within the bound. Conformity is restored
+  // after each split. (Inside a vertex ball the circumradius stays at most the
+  // ball's radius f(u)/4, which INITIALIZE fixes.)
+  const double bound = 2.0 / 3.0 * opt_.max_size;
+  // Each pass halves every sharp subsegment longer than the bound, so the
+  // passes are at most log2(longest / bound) + 1: below kPasses for any two
+  // positive doubles (their exponents span less than 2100).
+  constexpr int kPasses = 2100;
+  int passes = 0;
+  for (bool again = true; again;) {
+    if (++passes > kPasses)
+      throw LoopBoundError("split_long_sharp_subsegments: more than " + std::to_string(kPasses) + " passes");
+    again = false;
+    std::vector<std::uint64_t> keys;
+    for (const auto& [k, s] : segs_)
+      if (s.sharp && dist2(tri_.point(s.a), tri_.point(s.b)) > bound * bound) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    for (std::uint64_t k : keys) {
+      const auto it = segs_.find(k);
+      if (it == segs_.end()) continue;
+      // Counted with rule 6, whose size bound this serves.
+      if (insert(splite(it->second), Rule::rule6_split_skinny_tet) < 0) continue;
+      again = true;
+      if (!tick() || !process_queues(false)) return false;
+    }
+  }
+  return stop_reason_.empty();
+}
+
+void Mesher::make_protecting_balls() {
+  std::vector<ProtectingBall> balls;
+  for (int u = 0; u < static_cast<int>(dom_.p.vertices.size()); ++u)
+    if (dom_.ball_radius[u] > 0) balls.push_back({dom_.p.vertices[u], dom_.ball_radius[u], true});
+  // At the end of CONFORM, the diametric balls of sharp subsegments doubled.
+  std::vector<std::uint64_t> keys;
+  for (const auto& [k, s] : segs_)
+    if (s.sharp) keys.push_back(k);
+  std::sort(keys.begin(), keys.end());
+  for (std::uint64_t k : keys) {
+    const Subsegment& s = segs_.at(k);
+    const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);
+    balls.push_back({midpoint(a, b), std::sqrt(dist2(a, b)), false});
+  }
+  balls_.set(std::move(balls));
+}
+
+}  // namespace wqmesh::mesher

@@ -1,0 +1,158 @@
+// wqmesh: the domain P, the input PLC with the bounding box B (paper, section
+// 2), indexed once for the mesher: vertex incidence, facet frames, vertex
+// balls and their sectors (section 4.1).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "geometry.h"
+#include "mesher/domain.h"
+
+namespace wqmesh::mesher {
+
+using namespace geometry;
+
+Point3 Sector::at(double t) const { return add(center, add(mul(e1, r * std::cos(t)), mul(e2, r * std::sin(t)))); }
+
+// ---- P = the input PLC with the bounding box B ----------------------------------
+
+Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
+  input_vertices = static_cast<int>(plc.vertices.size());
+  input_edges = static_cast<int>(plc.edges.size());
+  input_facets = static_cast<int>(plc.facets.size());
+  box = analysis.bounding_box;
+  input_box = analysis.input_box;
+
+  // B: corners i = x + 2y + 4z; edges join corners differing in one bit;
+  // facets are oriented with their normals pointing out of B.
+  for (int i = 0; i < 8; ++i)
+    p.vertices.push_back(
+        {{(i & 1) ? box.hi[0] : box.lo[0], (i & 2) ? box.hi[1] : box.lo[1], (i & 4) ? box.hi[2] : box.lo[2]}});
+  const int c0 = input_vertices;
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  std::map<std::pair<int, int>, int> edge_index;
+  for (int f = 0; f < 6; ++f) {
+    PlcFacet facet;
+    facet.loops.push_back({c0 + faces[f][0], c0 + faces[f][1], c0 + faces[f][2], c0 + faces[f][3]});
+    const int axis = f / 2;
+    facet.normal = {{0, 0, 0}};
+    facet.normal[axis] = (f % 2) ? 1 : -1;
+    const int fid = static_cast<int>(p.facets.size());
+    for (int k = 0; k < 4; ++k) {
+      int a = facet.loops[0][k], b = facet.loops[0][(k + 1) % 4];
+      if (a > b) std::swap(a, b);
+      auto it = edge_index.find({a, b});
+      if (it == edge_index.end()) {
+        PlcEdge e;
+        e.a = a;
+        e.b = b;
+        e.facets = {{fid, -1}};
+        edge_index[{a, b}] = static_cast<int>(p.edges.size());
+        p.edges.push_back(e);
+      } else {
+        p.edges[it->second].facets[1] = fid;
+      }
+    }
+    p.facets.push_back(facet);
+  }
+
+  const std::size_t nv = p.vertices.size();
+  vertex_facets.assign(nv, {});
+  vertex_edges.assign(nv, {});
+  for (int e = 0; e < static_cast<int>(p.edges.size()); ++e) {
+    vertex_edges[p.edges[e].a].push_back(e);
+    vertex_edges[p.edges[e].b].push_back(e);
+  }
+  for (int f = 0; f < static_cast<int>(p.facets.size()); ++f)
+    for (const auto& loop : p.facets[f].loops)
+      for (int v : loop)
+        if (vertex_facets[v].empty() || vertex_facets[v].back() != f) vertex_facets[v].push_back(f);
+  for (auto& fs : vertex_facets) {
+    std::sort(fs.begin(), fs.end());
+    fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
+  }
+
+  sharp_vertex.assign(nv, 0);
+  sharp_edge.assign(p.edges.size(), 0);
+  ball_radius.assign(nv, 0);
+  for (std::size_t i = 0; i < analysis.sharp_vertices.size(); ++i) {
+    const int u = analysis.sharp_vertices[i];
+    sharp_vertex[u] = 1;
+    ball_radius[u] = analysis.lfs.at(i) / 4;  // section 4.1: radius f(u)/4
+  }
+  for (int e : analysis.sharp_edges) sharp_edge[e] = 1;
+
+  // A 2D frame per facet: origin at its first vertex, e1 along its first edge.
+  frames.resize(p.facets.size());
+  for (std::size_t f = 0; f < p.facets.size(); ++f) {
+    Frame& fr = frames[f];
+    const auto& loop = p.facets[f].loops[0];
+    fr.origin = p.vertices[loop[0]];
+    // Newell's normal of the outer loop (robust for non-convex facets).
+    fr.n = unit(newell_normal(p.vertices, loop));
+    fr.e1 = unit(sub(p.vertices[loop[1]], fr.origin));
+    fr.e1 = unit(sub(fr.e1, mul(fr.n, dot(fr.e1, fr.n))));
+    fr.e2 = cross(fr.n, fr.e1);
+    for (const auto& l : p.facets[f].loops) {
+      fr.loops.emplace_back();
+      for (int v : l) fr.loops.back().push_back(to2d(static_cast<int>(f), p.vertices[v]));
+    }
+  }
+}
+
+std::array<double, 2> Domain::to2d(int f, const Point3& x) const {
+  const Frame& fr = frames[f];
+  const Point3 d = sub(x, fr.origin);
+  return {{dot(d, fr.e1), dot(d, fr.e2)}};
+}
+
+bool Domain::inside_facet(int f, const Point3& x) const {
+  const std::array<double, 2> q = to2d(f, x);
+  bool inside = false;
+  for (const auto& loop : frames[f].loops) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const auto &a = loop[i], &b = loop[j];
+      if ((a[1] > q[1]) != (b[1] > q[1])) {
+        const double x_cross = a[0] + (q[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+        if (q[0] < x_cross) inside = !inside;
+      }
+    }
+  }
+  return inside;
+}
+
+Sector Domain::sector(int u, int f, int prev, int next) const {
+  const Point3 n = frames[f].n;
+  Sector s;
+  s.u = u;
+  s.facet = f;
+  s.center = p.vertices[u];
+  s.r = ball_radius[u];
+  Point3 d1 = sub(p.vertices[next], s.center);
+  d1 = sub(d1, mul(n, dot(d1, n)));
+  s.e1 = mul(d1, 1 / std::sqrt(dot(d1, d1)));
+  s.e2 = cross(n, s.e1);
+  const Point3 d2 = sub(p.vertices[prev], s.center);
+  double span = std::atan2(dot(d2, s.e2), dot(d2, s.e1));
+  if (span <= 0) span += 2 * kPi;
+  s.span = span;
+  return s;
+}
+
+std::size_t Domain::initialize_points() const {
+  std::size_t n = p.vertices.size();
+  for (int u = 0; u < static_cast<int>(p.vertices.size()); ++u) {
+    if (ball_radius[u] <= 0) continue;
+    n += vertex_edges[u].size();
+    for_each_corner(u, [&](int f, int prev, int next) { n += sector(u, f, prev, next).span >= kPi; });
+  }
+  return n;
+}
+
+bool Domain::facet_has_vertex(int f, int v) const {
+  return std::binary_search(vertex_facets[v].begin(), vertex_facets[v].end(), f);
+}
+
+}  // namespace wqmesh::mesher

@@ -1,0 +1,72 @@
+// wqmesh: the domain P of WQMESH (private): the input PLC with the bounding
+// box B (paper, section 2), indexed once for every phase: the facets and
+// edges at each vertex, a 2D frame per facet, the sharp vertices and edges,
+// and the vertex balls with their sectors (section 4.1).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "wqmesh/analysis.h"
+#include "wqmesh/types.h"
+
+namespace wqmesh::mesher {
+
+// ---- Shield sectors (section 4.1) ----------------------------------------------
+/// The sector of facet `facet` at sharp vertex u inside the vertex ball:
+/// points u + r (cos t e1 + sin t e2), t in [0, span], t = 0 on the first
+/// edge of the sector, t = span on the second.
+struct Sector {
+  int u = -1, facet = -1;
+  Point3 center, e1, e2;
+  double r = 0, span = 0;
+  Point3 at(double t) const;
+};
+
+// ---- P: the input PLC with the bounding box B (section 2) --------------------
+struct Domain {
+  PLC p;  ///< input elements first, then B's 8 vertices, 12 edges, 6 facets
+  int input_vertices = 0, input_edges = 0, input_facets = 0;
+  std::vector<std::vector<int>> vertex_facets;  ///< facets whose loops hold a P vertex
+  std::vector<std::vector<int>> vertex_edges;
+  std::vector<char> sharp_vertex, sharp_edge;
+  std::vector<double> ball_radius;  ///< f(u)/4 at sharp vertices, else 0
+  struct Frame {
+    Point3 origin, e1, e2, n;
+    std::vector<std::vector<std::array<double, 2>>> loops;  ///< 2D loops
+  };
+  std::vector<Frame> frames;  ///< per facet
+  Box box;                    ///< B
+  Box input_box;
+
+  Domain(const PLC& plc, const Analysis& analysis);
+  bool is_box_facet(int f) const { return f >= input_facets; }
+  std::array<double, 2> to2d(int f, const Point3& x) const;
+  /// Whether x (projected on the plane of facet f) lies inside f (even-odd rule
+  /// over its loops).
+  bool inside_facet(int f, const Point3& x) const;
+  bool facet_has_vertex(int f, int v) const;
+  /// The sector of facet f at the sharp vertex u, whose loop runs prev, u,
+  /// next: it turns counter-clockwise about the facet normal from the edge
+  /// u-next (t = 0) to the edge u-prev (t = span), inside the vertex ball.
+  Sector sector(int u, int f, int prev, int next) const;
+  /// Calls fn(f, prev, next) for every corner at u of a loop of a facet at
+  /// u (one per sector), in the order INITIALIZE makes the shield
+  /// subsegments; initialize_points counts along the same walk.
+  template <class F>
+  void for_each_corner(int u, F&& fn) const {
+    for (int f : vertex_facets[u])
+      for (const auto& loop : p.facets[f].loops)
+        for (std::size_t i = 0, m = loop.size(); i < m; ++i)
+          if (loop[i] == u) fn(f, loop[(i + m - 1) % m], loop[(i + 1) % m]);
+  }
+  /// The number of vertices INITIALIZE inserts (section 4.1): the vertices of
+  /// P and B, one ball point per edge end at a sharp vertex, and one SOS split
+  /// per sector of angle pi or more. Known before meshing, so a vertex limit
+  /// below it is refused at once.
+  std::size_t initialize_points() const;
+};
+
+}  // namespace wqmesh::mesher

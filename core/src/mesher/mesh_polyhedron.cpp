@@ -1,0 +1,200 @@
+// wqmesh: WQMESH(P) (paper, section 4.3): the four phases in order, then the
+// tets inside the polyhedron, their classes and the statistics.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "wqmesh/mesher.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "mesher/mesher.h"
+#include "scaling.h"
+
+namespace wqmesh {
+
+PointEstimate estimate_edge_points(const PLC& plc, const Analysis& analysis) {
+  // Two input edges e1, e2 leave the sharp vertex u at angle t. At distance d
+  // from u, e2 passes within d sin t of e1, so a subsegment of e1 there of
+  // length s > 2 d sin t / (1 - sin t) has e2 through its diametric ball, and
+  // once e2 is split as finely, a vertex of e2 in it: rule 1 (SPLITE, section
+  // 4.2) splits it. Outside the vertex ball (radius f(u)/4, section 4.1) and up
+  // to L, the length of the shorter edge, e1 ends with subsegments of length
+  // about 2 d sin t, so about ln(4 L / f(u)) / (2 sin t) vertices; we take
+  // a quarter of that, ln(4 L / f(u)) / (8 sin t), as a safe lower estimate.
+  PointEstimate best;
+  std::vector<double> f(plc.vertices.size(), 0);
+  for (std::size_t i = 0; i < analysis.sharp_vertices.size(); ++i) f[analysis.sharp_vertices[i]] = analysis.lfs[i];
+  auto length = [&](int e) {
+    const Point3& a = plc.vertices[plc.edges[e].a];
+    const Point3& b = plc.vertices[plc.edges[e].b];
+    return std::sqrt(geometry::dist2(a, b));
+  };
+  for (const EdgeEdgeAngle& a : analysis.edge_edge) {
+    if (!a.acute || f[a.vertex] <= 0) continue;
+    const double L = std::min(length(a.edge1), length(a.edge2));
+    const double r = f[a.vertex] / 4;
+    const double s = std::sin(a.degrees * geometry::kPi / 180);
+    if (!(L > r) || !(s > 0)) continue;
+    const double n = std::log(L / r) / (8 * s);
+    if (n > best.points) best = {n, a.vertex, a.edge1, a.edge2, a.degrees};
+  }
+  return best;
+}
+
+/// WQMESH on a normalised input (see mesh_polyhedron below): coordinates at
+/// most 2 in absolute value.
+static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
+                                  const ProgressCallback& progress) {
+  using clock = std::chrono::steady_clock;
+  // Runs that cannot fit the vertex limit are refused before meshing, with
+  // the reason, instead of refining for minutes towards the limit.
+  auto refuse = [&](const std::string& message) {
+    MeshResult r;
+    r.stopped = "limit";
+    r.stop_message = message;
+    r.input_points = plc.vertices.size();
+    r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
+    return r;
+  };
+  const PointEstimate need = estimate_edge_points(plc, analysis);
+  if (need.points > double(options.max_vertices)) {
+    const PlcEdge& e1 = plc.edges[need.edge1];
+    const PlcEdge& e2 = plc.edges[need.edge2];
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "the input edges %d (vertices %d-%d) and %d (vertices %d-%d) meet at vertex %d at %.3g degrees: "
+                  "a conforming mesh needs at least about %.3g vertices along them, more than the vertex limit %zu",
+                  need.edge1, e1.a, e1.b, need.edge2, e2.a, e2.b, need.vertex, need.degrees, need.points,
+                  options.max_vertices);
+    return refuse(text);
+  }
+  const mesher::Domain domain(plc, analysis);
+  // INITIALIZE's vertex count is known in advance (section 4.1); each later
+  // phase stops at the limit by itself.
+  const std::size_t initial = domain.initialize_points();
+  if (initial > options.max_vertices) {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "INITIALIZE alone inserts %zu vertices (the input vertices and the bounding box corners, the "
+                  "vertex-ball points and the SOS splits of %zu sharp vertices), more than the vertex limit %zu",
+                  initial, analysis.sharp_vertices.size(), options.max_vertices);
+    return refuse(text);
+  }
+  mesher::Mesher m(domain, options, progress);
+  std::vector<PhaseStats> phases;
+  std::size_t last_count = 0;
+  auto run = [&](const char* name, auto&& step) {
+    if (m.stopped()) return;
+    if (progress) {
+      Progress p;
+      p.phase = name;
+      p.vertices = m.vertices().size();
+      if (!progress(p)) {
+        m.cancel();
+        return;
+      }
+    }
+    const auto t0 = clock::now();
+    // A walk past its stated bound (LoopBoundError, triangulation.h) is an
+    // internal error: named with the phase, the loop and the vertex.
+    try {
+      step();
+    } catch (const LoopBoundError& e) {
+      throw std::runtime_error(std::string("internal error in ") + name + ": " + e.what());
+    }
+    PhaseStats s;
+    s.name = name;
+    s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
+    s.points_inserted = m.vertices().size() - last_count;
+    last_count = m.vertices().size();
+    phases.push_back(s);
+  };
+  run("initialize", [&] { m.initialize(); });
+  run("conform", [&] { m.conform(); });
+  run("refine", [&] { m.refine(); });
+  std::size_t slivers_qmesh = 0;
+  if (options.pump && !m.stopped()) {
+    // Count the inside slivers QMESH would leave, then PUMP.
+    MeshResult before = m.extract();
+    slivers_qmesh = before.slivers;
+    run("pump", [&] { m.pump(); });
+  }
+  MeshResult r;
+  const auto t0 = clock::now();
+  r = m.extract();
+  PhaseStats s;
+  s.name = "extract";
+  s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
+  phases.push_back(s);
+  r.phases = phases;
+  if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
+  if (r.stopped == "limit" && r.stop_message.empty()) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,
+                  phases.size() >= 2 ? phases[phases.size() - 2].name.c_str() : "initialize");
+    r.stop_message = text;
+  }
+  r.input_points = plc.vertices.size();
+  r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
+  r.points_inserted = m.vertices().size() - domain.p.vertices.size();
+  r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
+  r.pumped_vertices = m.pumped_vertices;
+  r.rule_points = m.rule_count;
+  r.all_vertices = m.vertices().size();
+  if (options.measure_floor) {
+    std::vector<Point3> points(m.vertices().size());
+    for (std::size_t v = 0; v < points.size(); ++v) points[v] = m.triangulation().point(static_cast<int>(v));
+    const auto f0 = clock::now();
+    RegularTriangulation floor;
+    floor.insert_all(points);
+    r.delaunay_floor_s = std::chrono::duration<double>(clock::now() - f0).count();
+  }
+  return r;
+}
+
+MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
+                           const ProgressCallback& progress) {
+  // Beyond the paper: the run works on the input scaled by 2^-E (exact; see
+  // scaling.h), so that no formula of the mesher overflows or underflows, and
+  // every output length is scaled back by 2^E (weights by 2^2E, volumes by
+  // 2^3E): the input vertices come out at their exact input coordinates.
+  const int E = normalisation_exponent(plc);
+  MeshResult r;
+  if (E == 0) {
+    r = mesh_normalised(plc, analysis, options, progress);
+  } else {
+    const PLC scaled = scaled_plc(plc, -E);
+    Analysis a = analysis;
+    scale_analysis(a, -E);
+    MeshOptions o = options;
+    o.max_size = std::ldexp(options.max_size, -E);
+    r = mesh_normalised(scaled, a, o, progress);
+    for (Point3& p : r.mesh.vertices)
+      for (double& x : p) x = std::ldexp(x, E);
+    for (double& w : r.mesh.weights) w = std::ldexp(w, 2 * E);
+    for (double& n : r.nearest_neighbour) n = std::ldexp(n, E);
+    for (ProtectingBall& b : r.protecting_balls) {
+      for (double& x : b.center) x = std::ldexp(x, E);
+      b.radius = std::ldexp(b.radius, E);
+    }
+    for (TetQuality& q : r.quality) {
+      q.volume = std::ldexp(q.volume, 3 * E);
+      q.radius = std::ldexp(q.radius, E);
+      q.shortest_edge = std::ldexp(q.shortest_edge, E);
+      q.longest_edge = std::ldexp(q.longest_edge, E);
+      q.inradius = std::ldexp(q.inradius, E);
+    }
+  }
+  // A valid polyhedron always has interior tets once a run is done: none is
+  // a bug (the symptom of a lost inside/outside labelling), not a result.
+  if (r.stopped.empty() && r.mesh.tets.empty())
+    throw std::runtime_error("internal error: the run finished with no tet inside the polyhedron");
+  return r;
+}
+
+}  // namespace wqmesh

@@ -1,0 +1,36 @@
+// wqmesh: the rules of WQMESH by name (private; paper, section 4.3). CONFORM
+// applies rules 1-3, REFINE rules 4-7; a rule runs only when no rule with a
+// smaller number applies. Rule::initialize counts INITIALIZE's insertions.
+// The numbers are the paper's: MeshResult::rule_points[rule_number(r)].
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+namespace wqmesh::mesher {
+
+enum class Rule : int {
+  initialize = 0,
+  /// Rule 1: an encroached subsegment e: SPLITE(e).
+  rule1_split_encroached_subsegment = 1,
+  /// Rule 2: a subfacet of B that is encroached, or one of the input that
+  /// is missing from Del V: SPLITF(h).
+  rule2_split_missing_subfacet = 2,
+  /// Rule 3: the midpoint of a sharp subsegment on edge e encroaches a
+  /// subsegment or subfacet h in an element of P disjoint from e: split h.
+  rule3_split_near_sharp_subsegment = 3,
+  /// Rule 4: an encroached subsegment e: SPLITE(e).
+  rule4_split_encroached_subsegment = 4,
+  /// Rule 5: a non-guarded subfacet that is encroached, or a guarded one
+  /// missing from Del V: SPLITF(h).
+  rule5_split_encroached_subfacet = 5,
+  /// Rule 6: a tet with circumradius-edge ratio above rho0: ENCROACH of its
+  /// circumcenter, unless that lies in a protecting ball.
+  rule6_split_skinny_tet = 6,
+  /// Rule 7: a sliver vertex whose weighted point threatens the subcomplex:
+  /// split what it encroaches or removes.
+  rule7_split_for_pumping = 7,
+};
+constexpr int kRules = 8;  ///< Rule::initialize and rules 1..7
+
+constexpr int rule_number(Rule r) { return static_cast<int>(r); }
+
+}  // namespace wqmesh::mesher
