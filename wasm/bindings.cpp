@@ -43,44 +43,14 @@
 #include <cstdlib>
 #include <exception>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "wqmesh/input.h"
-#include "wqmesh/json.h"
-#include "wqmesh/mesher.h"
-#include "wqmesh/options.h"
-#include "wqmesh/output.h"
-#include "wqmesh/report.h"
-
-#ifndef WQMESH_VERSION
-#define WQMESH_VERSION "0.0.0"
-#endif
-
-// ---- Counted allocations -------------------------------------------------------
-#include <emscripten/bind.h>
-#include <emscripten/val.h>
-
-#include <malloc.h>
-
-#include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <cstdlib>
-#include <exception>
-#include <new>
-#include <string>
-#include <vector>
-
-#include "wqmesh/input.h"
-#include "wqmesh/json.h"
-#include "wqmesh/mesher.h"
-#include "wqmesh/report.h"
-
-#ifndef WQMESH_VERSION
-#define WQMESH_VERSION "0.0.0"
-#endif
+// The facade (reading, options, meshing, statistics); the writers of
+// writeMesh() take the arrays of a JS result, so they call output.h directly.
+#include "wqmesh/wqmesh.h"
 
 // ---- Counted allocations -------------------------------------------------------
 
@@ -217,7 +187,7 @@ using emscripten::val;
 // key must name an option (of check, when `for_check`), booleans must be
 // booleans, numbers numbers, and every value within the table's range. An
 // undefined value keeps the default. Returns "" or the error message.
-std::string read_options(const val& options, bool for_check, wqmesh::RunOptions& out) {
+std::string read_options(const val& options, bool for_check, wqmesh::Options& out) {
   if (options.isUndefined() || options.isNull()) return "";
   if (options.typeOf().as<std::string>() != "object" || val::global("Array").call<bool>("isArray", options))
     return "the options must be an object, e.g. { rho: 2.2 }";
@@ -244,9 +214,8 @@ std::string read_options(const val& options, bool for_check, wqmesh::RunOptions&
         return std::string(spec->name) + " must be a number, got a " + v.typeOf().as<std::string>();
       value = v.as<double>();
     }
-    const std::string error = wqmesh::check_option_value(*spec, value, spec->name);
+    const std::string error = out.try_set(*spec, value, spec->name);
     if (!error.empty()) return error;
-    wqmesh::apply_option(out, *spec, value);
   }
   return "";
 }
@@ -290,7 +259,7 @@ void copy_bytes(const val& bytes, std::string& data) {
 std::string check(const val& bytes, const val& options, bool pretty) {
   if (!bytes.instanceof(val::global("Uint8Array")))
     return failure_json("io", "check() expects the file's bytes as a Uint8Array", pretty);
-  wqmesh::RunOptions o;
+  wqmesh::Options o;
   const std::string option_error = read_options(options, true, o);
   if (!option_error.empty()) return failure_json("options", option_error, pretty);
   const double length = byte_length(bytes);
@@ -303,8 +272,7 @@ std::string check(const val& bytes, const val& options, bool pretty) {
     return failure_json("too_large", "the input does not fit in memory", pretty);
   }
   try {
-    const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, o.analysis);
-    return wqmesh::check_json(result, pretty);
+    return wqmesh::Polyhedron::read_bytes(data.data(), data.size(), o).report_json(pretty);
   } catch (const std::bad_alloc&) {
     return failure_json("too_large", "the input does not fit in memory", pretty);
   } catch (const std::exception& e) {
@@ -351,14 +319,13 @@ val memory_error(double max_memory, const char* phase, std::size_t vertices) {
 val mesh(const val& bytes, const val& options, const val& progress) {
   if (!bytes.instanceof(val::global("Uint8Array")))
     return error_value("io", "mesh() expects the file's bytes as a Uint8Array");
-  wqmesh::RunOptions run;
+  wqmesh::Options run;
   const std::string option_error = read_options(options, false, run);
   if (!option_error.empty()) return error_value("options", option_error);
   const double length = byte_length(bytes);
   if (length > static_cast<double>(wqmesh::InputLimits().max_bytes))
     return error_value("too_large", too_large_message(length));
-  const wqmesh::MeshOptions& o = run.mesh;
-  const double max_memory = run.max_memory_bytes;
+  const double max_memory = run.max_memory_bytes();
   const bool js_progress = progress.typeOf().as<std::string>() == "function";
 
   // Where the run was when memory ran out, for the message.
@@ -369,43 +336,42 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     std::string data;
     copy_bytes(bytes, data);
     // time_s as the command line's: from the bytes read to the mesh made
-    // (validation and analysis included).
-    const double t0 = val::global("Date").call<double>("now");
-    const wqmesh::CheckResult input = wqmesh::check_polyhedron(data.data(), data.size(), {}, run.analysis);
-    if (!input.valid) {
+    // (validation and analysis included): Result::time_s.
+    const wqmesh::Polyhedron input = wqmesh::Polyhedron::read_bytes(data.data(), data.size(), run);
+    if (!input.valid()) {
       // check_polyhedron calls a std::bad_alloc too_large: the cap's, here.
-      if (cap_reached && input.error_kind == "too_large") throw std::bad_alloc();
-      return error_value(input.error_kind, input.error);
+      if (cap_reached && input.error_kind() == wqmesh::InputErrorKind::too_large) throw std::bad_alloc();
+      return error_value(input.check_result().error_kind, input.error_message());
     }
     std::string().swap(data);
     phase = "initialize";
     // Always a callback: it records where the run is, ends it when memory is
     // short (the mesher calls it between insertions) and calls JS when asked.
-    const wqmesh::ProgressCallback callback = [&](const wqmesh::Progress& p) {
-      phase = p.phase == "conform" ? "conform" : p.phase == "refine" ? "refine" : p.phase == "pump" ? "pump"
-            : p.phase == "extract" ? "extract" : "initialize";
+    const wqmesh::MeshProgressCallback callback = [&](const wqmesh::MeshProgress& p) {
+      phase = wqmesh::to_string(p.phase);
       vertices = p.vertices;
       if (memory_short) throw StopForMemory();
       if (!js_progress) return true;
-      const val r = progress(p.phase, p.fraction, static_cast<double>(p.vertices), static_cast<double>(p.steps));
+      const val r = progress(std::string(phase), p.fraction, static_cast<double>(p.vertices),
+                             static_cast<double>(p.steps));
       return !r.isFalse();
     };
-    wqmesh::MeshResult r;
+    std::optional<wqmesh::Result> run_result;
     {
       const DeferShortage defer;
-      r = wqmesh::mesh_polyhedron(input.plc, input.analysis, o, callback);
+      run_result.emplace(wqmesh::mesh(input, run, callback));
     }
+    const wqmesh::MeshResult& r = run_result->raw();
     if (memory_short) {  // after the last call of the callback (the extraction)
       phase = "extract";
       vertices = r.all_vertices;
       throw StopForMemory();
     }
-    const double seconds = (val::global("Date").call<double>("now") - t0) / 1000;
     phase = "output";
     vertices = r.all_vertices;
     val out = val::object();
     // peak_memory_mb: the peak of the live C++ allocations of this call.
-    out.set("stats", wqmesh::mesh_stats_json(input.plc, r, o, seconds, peak_bytes / 1048576.0, false));
+    out.set("stats", run_result->stats_json(peak_bytes / 1048576.0, false));
     std::vector<double> xyz;
     for (const auto& p : r.mesh.vertices) xyz.insert(xyz.end(), p.begin(), p.end());
     std::vector<std::uint32_t> tets, tris;
@@ -557,7 +523,7 @@ val memory_stats() {
   return out;
 }
 
-std::string version() { return WQMESH_VERSION; }
+std::string version() { return wqmesh::version(); }
 
 }  // namespace
 

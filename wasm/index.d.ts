@@ -14,7 +14,11 @@
  */
 export type WqmeshInput = Uint8Array | ArrayBuffer | ArrayBufferView | string;
 
-/** The stable names of the reasons why an input is rejected. */
+/**
+ * The stable names of the reasons why an input is rejected: the enumerators of
+ * InputErrorKind in core/include/wqmesh/error.h, in order (checked by
+ * tests/node/names.test.mjs), and `internal`.
+ */
 export type InputErrorKind =
   | 'io'
   | 'empty'
@@ -32,6 +36,8 @@ export type InputErrorKind =
   | 'not_orientable'
   | 'self_intersection'
   | 'zero_volume'
+  /** Coordinates, extent, bounding box or volume beyond what double precision holds once scaled. */
+  | 'out_of_range'
   /** A failure that is not about the input (a bug): please report it. */
   | 'internal';
 

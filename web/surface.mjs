@@ -313,6 +313,7 @@ export const ERROR_WORDS = {
   not_orientable: 'The surface cannot be oriented consistently (like a Moebius strip).',
   self_intersection: 'The surface intersects itself.',
   zero_volume: 'The surface encloses no volume.',
+  out_of_range: 'The coordinates are too large or too small for double precision.',
   options: 'A parameter is out of its range.',
   limit: 'The run needs more memory than allowed.',
   internal: 'The mesher failed on an internal error (please report it).',

@@ -101,11 +101,7 @@ void apply_option(RunOptions& o, const OptionSpec& spec, double value) {
   else if (n == "maxSize") o.mesh.max_size = value;
   else if (n == "measureFloor") o.mesh.measure_floor = value != 0;
   else if (n == "maxMemoryBytes") o.max_memory_bytes = value;
-  else if (n == "boxMargin") {
-    // B is built by the analysis and used by the mesher: one margin for both.
-    o.mesh.box_margin = value;
-    o.analysis.box_margin = value;
-  }
+  else if (n == "boxMargin") o.mesh.box_margin = value;  // the analysis reads it too: RunOptions::analysis()
 }
 
 double option_value(const RunOptions& o, const OptionSpec& spec) {

@@ -22,13 +22,8 @@
 
 #include <sys/resource.h>
 
-#include "wqmesh/json.h"
-#include "wqmesh/mesh_reader.h"
-#include "wqmesh/mesher.h"
-#include "wqmesh/options.h"
-#include "wqmesh/output.h"
-#include "wqmesh/quality.h"
-#include "wqmesh/report.h"
+// The facade only (wqmesh.h includes the lower-level headers it builds on).
+#include "wqmesh/wqmesh.h"
 
 namespace {
 
@@ -87,70 +82,36 @@ bool parse_double(const std::string& text, double& out) {
   return errno == 0 && end != text.c_str() && *end == '\0';
 }
 
-// Reads the option of `spec` at args[i] (its flag) into `run` with the core's
-// option table (wqmesh/options.h, the ranges of the wasm module too): a
-// boolean flag sets its value, any other flag takes the next argument.
+// Reads the option of `spec` at args[i] (its flag) into `options` with the
+// core's option table (wqmesh/options.h, the ranges of the wasm module too):
+// a boolean flag sets its value, any other flag takes the next argument.
 // Advances i past what it read. Returns "" or the usage error.
 std::string parse_option(const std::vector<std::string>& args, std::size_t& i, const wqmesh::OptionSpec& spec,
-                         wqmesh::RunOptions& run) {
+                         wqmesh::Options& options) {
   double value = spec.flag_value;
   if (spec.type != wqmesh::OptionType::boolean) {
     if (i + 1 >= args.size() || !parse_double(args[i + 1], value))
       return std::string(spec.flag) + " needs " + wqmesh::option_range_text(spec);
     ++i;
   }
-  const std::string error = wqmesh::check_option_value(spec, value, spec.flag);
-  if (!error.empty()) return error;
-  wqmesh::apply_option(run, spec, value);
-  return "";
+  return options.try_set(spec, value, spec.flag);
 }
 
-// Reads the bytes of an input polyhedron, at most InputLimits::max_bytes of
-// them: a larger file (by its size, before reading, or by what a pipe or a
-// device yields) is refused as too_large without being read in full. On
-// failure fills `error` (kind io or too_large, as check_polyhedron reports
-// errors) and returns false.
-bool read_input(const std::string& path, std::string& data, wqmesh::CheckResult& error) {
-  const std::size_t max_bytes = wqmesh::InputLimits().max_bytes;
-  error.valid = false;
-  auto fail = [&](const char* kind, const std::string& message) {
-    error.error_kind = kind;
-    error.error = message;
-    return false;
-  };
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return fail("io", "cannot read '" + path + "': it is a folder");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fail("io", "cannot open '" + path + "': " + std::strerror(errno));
-  const auto too_large = [&](const std::string& size) {
-    return fail("too_large", "'" + path + "' has " + size + " bytes, beyond the limit of " +
-                                 std::to_string(max_bytes));
-  };
-  if (std::filesystem::is_regular_file(path, ec)) {
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size > max_bytes) return too_large(std::to_string(size));
-  }
-  data.clear();
-  std::vector<char> chunk(1 << 16);
-  while (in) {
-    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-    data.append(chunk.data(), static_cast<std::size_t>(in.gcount()));
-    if (data.size() > max_bytes) return too_large("more than " + std::to_string(max_bytes));
-  }
-  if (in.bad()) return fail("io", "cannot read '" + path + "'");
-  return true;
+// "wqmesh: PATH: KIND: MESSAGE" for an input that cannot be meshed.
+void print_input_error(const std::string& path, const wqmesh::Polyhedron& in) {
+  std::cerr << "wqmesh: " << path << ": " << in.check_result().error_kind << ": " << in.error_message() << "\n";
 }
 
 int run_check(const std::vector<std::string>& args) {
   std::string path;
   bool pretty = true;
-  wqmesh::RunOptions run;
+  wqmesh::Options options;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     if (a == "--compact") {
       pretty = false;
     } else if (const wqmesh::OptionSpec* spec = wqmesh::find_option_flag(a); spec != nullptr && spec->check) {
-      const std::string error = parse_option(args, i, *spec, run);
+      const std::string error = parse_option(args, i, *spec, options);
       if (!error.empty()) return usage_error(error);
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option '" + a + "' for check");
@@ -162,19 +123,11 @@ int run_check(const std::vector<std::string>& args) {
   }
   if (path.empty()) return usage_error("check needs an input file");
 
-  std::string data;
-  wqmesh::CheckResult unread;
-  if (!read_input(path, data, unread)) {
-    std::cout << wqmesh::check_json(unread, pretty) << "\n";
-    std::cerr << "wqmesh: " << path << ": " << unread.error_kind << ": " << unread.error << "\n";
-    return 2;
-  }
-
-  const wqmesh::CheckResult result = wqmesh::check_polyhedron(data.data(), data.size(), {}, run.analysis);
-  for (const std::string& w : result.warnings) std::cerr << "wqmesh: warning: " << w << "\n";
-  std::cout << wqmesh::check_json(result, pretty) << "\n";
-  if (!result.valid) {
-    std::cerr << "wqmesh: " << path << ": " << result.error_kind << ": " << result.error << "\n";
+  const wqmesh::Polyhedron in = wqmesh::Polyhedron::read_file(path, options);
+  for (const std::string& w : in.warnings()) std::cerr << "wqmesh: warning: " << w << "\n";
+  std::cout << in.report_json(pretty) << "\n";
+  if (!in.valid()) {
+    print_input_error(path, in);
     return 2;
   }
   return 0;
@@ -184,21 +137,10 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-bool read_file(const std::string& path, std::string& data) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  data = bytes.str();
-  return true;
-}
-
 int run_mesh(const std::vector<std::string>& args) {
   std::string path, out, stats_path;
   bool quiet = false;
-  wqmesh::RunOptions run;
-  const wqmesh::MeshOptions& options = run.mesh;
-  const wqmesh::AnalysisOptions& analysis_options = run.analysis;
+  wqmesh::Options options;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const wqmesh::OptionSpec* spec = wqmesh::find_option_flag(a);
@@ -207,7 +149,7 @@ int run_mesh(const std::vector<std::string>& args) {
     } else if (a == "--stats" && i + 1 < args.size()) {
       stats_path = args[++i];
     } else if (spec != nullptr) {
-      const std::string error = parse_option(args, i, *spec, run);
+      const std::string error = parse_option(args, i, *spec, options);
       if (!error.empty()) return usage_error(error);
     } else if (a == "--quiet") {
       quiet = true;
@@ -221,63 +163,41 @@ int run_mesh(const std::vector<std::string>& args) {
   }
   if (path.empty()) return usage_error("mesh needs an input file");
   if (out.empty()) return usage_error("mesh needs -o OUT.mesh, OUT.vtu or OUT.ele");
-  if (!ends_with(out, ".mesh") && !ends_with(out, ".vtu") && !ends_with(out, ".ele"))
+  if (!wqmesh::Result::format_of_path(out))
     return usage_error("the output '" + out + "' must end in .mesh, .vtu or .ele");
 
-  std::string data;
-  wqmesh::CheckResult unread;
-  if (!read_input(path, data, unread)) {
-    std::cerr << "wqmesh: " << path << ": " << unread.error_kind << ": " << unread.error << "\n";
+  const wqmesh::Polyhedron input = wqmesh::Polyhedron::read_file(path, options);
+  for (const std::string& w : input.warnings()) std::cerr << "wqmesh: warning: " << w << "\n";
+  if (!input.valid()) {
+    print_input_error(path, input);
     return 2;
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  const wqmesh::CheckResult input = wqmesh::check_polyhedron(data.data(), data.size(), {}, analysis_options);
-  for (const std::string& w : input.warnings) std::cerr << "wqmesh: warning: " << w << "\n";
-  if (!input.valid) {
-    std::cerr << "wqmesh: " << path << ": " << input.error_kind << ": " << input.error << "\n";
-    return 2;
-  }
-  std::string last_phase;
+  bool printed = false;
+  wqmesh::MeshPhase last_phase = wqmesh::MeshPhase::initialize;
   auto last_print = std::chrono::steady_clock::now();
-  const wqmesh::ProgressCallback progress = [&](const wqmesh::Progress& p) {
+  const wqmesh::MeshProgressCallback progress = [&](const wqmesh::MeshProgress& p) {
     if (quiet) return true;
     const auto now = std::chrono::steady_clock::now();
-    if (p.phase != last_phase || now - last_print > std::chrono::seconds(1)) {
-      std::cerr << "wqmesh: " << p.phase << ": " << p.vertices << " vertices\n";
+    if (!printed || p.phase != last_phase || now - last_print > std::chrono::seconds(1)) {
+      std::cerr << "wqmesh: " << wqmesh::to_string(p.phase) << ": " << p.vertices << " vertices\n";
+      printed = true;
       last_phase = p.phase;
       last_print = now;
     }
     return true;
   };
-  const wqmesh::MeshResult result = wqmesh::mesh_polyhedron(input.plc, input.analysis, options, progress);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const wqmesh::Result result = wqmesh::mesh(input, options, progress);
+  const double seconds = result.time_s();
 
-  if (result.conforming) {
-    if (ends_with(out, ".ele")) {
-      wqmesh::write_tetgen(out.substr(0, out.size() - 4), result.mesh);
-    } else {
-      std::ofstream f(out, std::ios::binary);
-      if (!f) {
-        std::cerr << "wqmesh: cannot write '" << out << "'\n";
-        return 1;
-      }
-      if (ends_with(out, ".mesh")) {
-        wqmesh::write_medit(f, result.mesh);
-      } else {
-        wqmesh::TetLabels labels;
-        for (wqmesh::TetClass c : result.tet_class) labels.tet_class.push_back(static_cast<int>(c));
-        // The same arrays on every run: weights of 0 where PUMP moved nothing.
-        wqmesh::TetMesh weighted = result.mesh;
-        weighted.weights.resize(weighted.vertices.size(), 0.0);
-        wqmesh::write_vtu(f, weighted, result.quality, &labels);
-      }
-      if (!f) {
-        std::cerr << "wqmesh: writing '" << out << "' failed\n";
-        return 1;
-      }
+  if (result.conforming()) {
+    try {
+      result.write_file(out);
+    } catch (const std::runtime_error& e) {
+      std::cerr << "wqmesh: " << e.what() << "\n";
+      return 1;
     }
   } else {
-    if (result.stopped.empty() || result.all_vertices > 0)
+    if (result.stop_reason() == wqmesh::StopReason::done || result.raw().all_vertices > 0)
       std::cerr << "wqmesh: the mesh does not conform to the input; '" << out << "' not written\n";
     else
       std::cerr << "wqmesh: stopped before meshing; '" << out << "' not written\n";
@@ -285,7 +205,7 @@ int run_mesh(const std::vector<std::string>& args) {
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
   const double peak_mb = usage.ru_maxrss / 1024.0;  // Linux: kilobytes
-  const std::string stats = wqmesh::mesh_stats_json(input.plc, result, options, seconds, peak_mb);
+  const std::string stats = result.stats_json(peak_mb);
   if (!stats_path.empty()) {
     std::ofstream f(stats_path);
     f << stats << "\n";
@@ -294,17 +214,18 @@ int run_mesh(const std::vector<std::string>& args) {
       return 1;
     }
   }
+  const wqmesh::MeshResult& r = result.raw();
   if (!quiet)
-    std::cerr << "wqmesh: " << result.mesh.vertices.size() << " vertices, " << result.mesh.tets.size()
-              << " tets, " << result.slivers << " slivers, " << result.skinny << " skinny, "
-              << result.violations << " violations, " << seconds << " s\n";
-  if (!result.stopped.empty()) {
-    std::cerr << "wqmesh: stopped: " << result.stopped;
-    if (!result.stop_message.empty()) std::cerr << ": " << result.stop_message;
+    std::cerr << "wqmesh: " << r.mesh.vertices.size() << " vertices, " << r.mesh.tets.size() << " tets, "
+              << r.slivers << " slivers, " << r.skinny << " skinny, " << r.violations << " violations, "
+              << seconds << " s\n";
+  if (result.stop_reason() != wqmesh::StopReason::done) {
+    std::cerr << "wqmesh: stopped: " << wqmesh::to_string(result.stop_reason());
+    if (!result.stop_message().empty()) std::cerr << ": " << result.stop_message();
     std::cerr << "\n";
     return 3;
   }
-  if (!result.conforming) return 1;
+  if (!result.conforming()) return 1;
   return 0;
 }
 
@@ -335,23 +256,17 @@ int run_measure(const std::vector<std::string>& args) {
   try {
     mesh = wqmesh::read_tet_mesh_file(path);
   } catch (const wqmesh::InputError& e) {
-    std::cerr << "wqmesh: " << wqmesh::error_kind_name(e.kind()) << ": " << e.what() << "\n";
+    std::cerr << "wqmesh: " << wqmesh::to_string(e.kind()) << ": " << e.what() << "\n";
     return 2;
   }
   double volume_input = std::nan("");
   if (!input.empty()) {
-    std::string data;
-    wqmesh::CheckResult unread;
-    if (!read_input(input, data, unread)) {
-      std::cerr << "wqmesh: " << input << ": " << unread.error_kind << ": " << unread.error << "\n";
+    const wqmesh::Polyhedron in = wqmesh::Polyhedron::read_file(input);
+    if (!in.valid()) {
+      print_input_error(input, in);
       return 2;
     }
-    const wqmesh::CheckResult in = wqmesh::check_polyhedron(data.data(), data.size());
-    if (!in.valid) {
-      std::cerr << "wqmesh: " << input << ": " << in.error_kind << ": " << in.error << "\n";
-      return 2;
-    }
-    volume_input = wqmesh::plc_volume(in.plc);
+    volume_input = wqmesh::plc_volume(in.plc());
   }
   const bool flipped = wqmesh::orient_tets_by_majority(mesh);
   const wqmesh::MeshStats s = wqmesh::mesh_stats(mesh, wqmesh::mesh_quality(mesh));
@@ -414,7 +329,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "--version") {
-      std::cout << "wqmesh 0.1.0\n";
+      std::cout << "wqmesh " << wqmesh::version() << "\n";
       return 0;
     }
     if (command == "check") return run_check(args);

@@ -12,7 +12,7 @@ import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = join(root, 'build/native/bin/wqmesh');
+const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
 const skip = !existsSync(cli) && 'the native build is missing';
 const work = mkdtempSync(join(tmpdir(), 'wqmesh-cli-'));
 const spike = join(root, 'examples/models/spike.off');

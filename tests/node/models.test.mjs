@@ -20,6 +20,7 @@ import { after, test } from 'node:test';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
 import { loadWqmesh } from '../../wasm/index.mjs';
+import { errorKinds } from './lib/names.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const shared = join(root, '../shared/models');
@@ -29,9 +30,7 @@ const MAX_VERTICES = 10000;
 const DEADLINE_MS = 120_000;  // per run: beyond it, a hang
 const MAX_BUFFER = 256 * 2 ** 20;  // the check report of a big model is megabytes long
 
-const KINDS = ['io', 'empty', 'syntax', 'truncated', 'too_large', 'non_finite', 'bad_index', 'too_few_faces',
-  'degenerate_face', 'duplicate_face', 'open_boundary', 'non_manifold_edge', 'non_manifold_vertex',
-  'not_orientable', 'self_intersection', 'zero_volume'];
+const KINDS = errorKinds();  // the one list: error.h
 const STATS_KEYS = ['input_points', 'sharp_elements', 'points_inserted', 'vertices', 'tets', 'min_dihedral_deg',
   'radius_edge_bins', 'dihedral_bins', 'slivers', 'skinny', 'near_small_angle', 'violations', 'volume_input',
   'volume_mesh', 'conforming', 'protecting_balls', 'stopped', 'time_s', 'phases'];

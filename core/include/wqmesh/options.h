@@ -32,7 +32,14 @@ struct OptionSpec {
 /// The options of a run, with their defaults (those of the table).
 struct RunOptions {
   MeshOptions mesh;
-  AnalysisOptions analysis;
+  /// The options of the input analysis, from the mesh options: the margin of
+  /// the bounding box B is mesh.box_margin (one margin for the analysis that
+  /// builds B and the mesher that uses it).
+  AnalysisOptions analysis() const {
+    AnalysisOptions a;
+    a.box_margin = mesh.box_margin;
+    return a;
+  }
   /// wasm only: the most bytes the call's C++ allocations may hold at once.
   double max_memory_bytes = 3.0 * 1024 * 1024 * 1024;
 };
