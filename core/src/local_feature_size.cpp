@@ -21,17 +21,16 @@
 #include <limits>
 #include <vector>
 
+#include "geometry.h"
 #include "wqmesh/analysis.h"
 
 namespace wqmesh {
 namespace {
 
 using V = Point3;
-V sub(const V& a, const V& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-}
+using geometry::cross;
+using geometry::dot;
+using geometry::sub;
 
 /// Squared distance from p to the closed segment ab.
 double segment_distance2(const V& p, const V& a, const V& b) {

@@ -2,10 +2,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cmath>
 
+#include "scaling.h"
 #include "wqmesh/json.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/output.h"
-#include "scaling.h"
 
 namespace wqmesh {
 
@@ -43,6 +43,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("time_s", time_s);
   if (peak_memory_mb >= 0) j.field("peak_memory_mb", peak_memory_mb);
   j.field("all_vertices", r.all_vertices);
+  j.field("caps_reached", r.caps_reached);
   if (r.delaunay_floor_s > 0) {
     j.field("delaunay_floor_s", r.delaunay_floor_s);
     j.field("ratio_to_delaunay", time_s / r.delaunay_floor_s);

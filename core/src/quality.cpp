@@ -8,6 +8,7 @@
 #include "wqmesh/quality.h"
 
 #include "exact.h"
+#include "geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,17 +20,11 @@ namespace wqmesh {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using geometry::cross;
+using geometry::dot;
+using geometry::kPi;
+using geometry::norm;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-
-double dot(const Point3& u, const Point3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
-
-Point3 cross(const Point3& u, const Point3& v) {
-  return {{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}};
-}
-
-double norm(const Point3& u) { return std::sqrt(dot(u, u)); }
 
 /// The angle between u and v in degrees, in [0, 180]. atan2(|u x v|, u . v) is
 /// accurate near 0 and 180 degrees, where acos of the normalized dot product

@@ -29,8 +29,7 @@ double deg(double radians) { return radians * 180 / kPi; }
 /// clockwise from outside); the edges are derived, with both facets.
 /// Each facet is a list of loops: the outer one first, then holes (clockwise
 /// from outside).
-PLC make_plc_with_holes(std::vector<Point3> vertices,
-                        const std::vector<std::vector<std::vector<int>>>& facets) {
+PLC make_plc_with_holes(std::vector<Point3> vertices, const std::vector<std::vector<std::vector<int>>>& facets) {
   PLC plc;
   plc.vertices = std::move(vertices);
   std::map<std::pair<int, int>, int> edge_of;
@@ -39,20 +38,20 @@ PLC make_plc_with_holes(std::vector<Point3> vertices,
     facet.loops = facets[f];
     plc.facets.push_back(facet);
     for (const auto& loop : facets[f])
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      int a = loop[i], b = loop[(i + 1) % loop.size()];
-      if (a > b) std::swap(a, b);
-      auto it = edge_of.find({a, b});
-      if (it == edge_of.end()) {
-        PlcEdge e;
-        e.a = a, e.b = b;
-        e.facets = {{f, -1}};
-        edge_of[{a, b}] = static_cast<int>(plc.edges.size());
-        plc.edges.push_back(e);
-      } else {
-        plc.edges[it->second].facets[1] = f;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        int a = loop[i], b = loop[(i + 1) % loop.size()];
+        if (a > b) std::swap(a, b);
+        auto it = edge_of.find({a, b});
+        if (it == edge_of.end()) {
+          PlcEdge e;
+          e.a = a, e.b = b;
+          e.facets = {{f, -1}};
+          edge_of[{a, b}] = static_cast<int>(plc.edges.size());
+          plc.edges.push_back(e);
+        } else {
+          plc.edges[it->second].facets[1] = f;
+        }
       }
-    }
   }
   for (const auto& e : plc.edges) EXPECT_GE(e.facets[1], 0) << "open surface in a test PLC";
   return plc;
@@ -99,8 +98,7 @@ int find_edge(const PLC& plc, int a, int b) {
 }
 
 double dist(const Point3& a, const Point3& b) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                   (a[2] - b[2]) * (a[2] - b[2]));
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
 /// f(u) by brute force, independently of the library's search: the minimum
@@ -168,8 +166,10 @@ void check_invariants(const PLC& plc, const Analysis& a, std::size_t brute_strid
     EXPECT_GT(d.internal_degrees, 0);
     EXPECT_LT(d.internal_degrees, 360);
     EXPECT_NEAR(d.internal_degrees + d.external_degrees, 360, 1e-9);
-    if (d.sharp) EXPECT_LT(std::min(d.internal_degrees, d.external_degrees), 90 + 1e-9);
-    else EXPECT_GE(std::min(d.internal_degrees, d.external_degrees), 90 - 1e-9);
+    if (d.sharp)
+      EXPECT_LT(std::min(d.internal_degrees, d.external_degrees), 90 + 1e-9);
+    else
+      EXPECT_GE(std::min(d.internal_degrees, d.external_degrees), 90 - 1e-9);
     EXPECT_EQ(d.sharp, std::binary_search(a.sharp_edges.begin(), a.sharp_edges.end(), d.edge));
     phi = std::min({phi, d.internal_degrees, d.external_degrees});
   }
@@ -177,8 +177,10 @@ void check_invariants(const PLC& plc, const Analysis& a, std::size_t brute_strid
     EXPECT_GE(x.degrees, 0);
     EXPECT_LE(x.degrees, 180);
     // acute is exact, degrees rounded: they agree up to rounding.
-    if (x.acute) EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-edge";
-    else EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-edge";
+    if (x.acute)
+      EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-edge";
+    else
+      EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-edge";
     if (x.acute) EXPECT_TRUE(std::binary_search(a.sharp_vertices.begin(), a.sharp_vertices.end(), x.vertex));
     phi = std::min(phi, x.degrees);
   }
@@ -186,8 +188,10 @@ void check_invariants(const PLC& plc, const Analysis& a, std::size_t brute_strid
     EXPECT_GE(x.degrees, 0);
     EXPECT_LE(x.degrees, 180);
     // acute is exact, degrees rounded: they agree up to rounding.
-    if (x.acute) EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-facet";
-    else EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-facet";
+    if (x.acute)
+      EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-facet";
+    else
+      EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-facet";
     if (x.acute) EXPECT_TRUE(std::binary_search(a.sharp_vertices.begin(), a.sharp_vertices.end(), x.vertex));
     phi = std::min(phi, x.degrees);
   }
@@ -366,8 +370,7 @@ TEST(Analysis, LShapedBlockReflexEdge) {
 // so its external dihedral is acute.
 TEST(Analysis, NotchedBoxAcuteExternalDihedral) {
   const double d = 0.25, k = 2;
-  const PLC plc = make_prism(
-      {{{0, 0}}, {{4, 0}}, {{4, 4}}, {{2 + d, 4}}, {{2, 4 - k}}, {{2 - d, 4}}, {{0, 4}}}, 1);
+  const PLC plc = make_prism({{{0, 0}}, {{4, 0}}, {{4, 4}}, {{2 + d, 4}}, {{2, 4 - k}}, {{2 - d, 4}}, {{0, 4}}}, 1);
   const Analysis a = analyze(plc);
   check_invariants(plc, a);
   const double notch = deg(2 * std::atan(d / k));  // 14.25 degrees
@@ -563,12 +566,11 @@ TEST(Analysis, Json) {
   JsonWriter j(false);
   write_analysis_json(j, a);
   const std::string s = j.str();
-  for (const char* key : {"\"counts\"", "\"phi_m_degrees\"", "\"sharp_vertices\":[0,2,3,5]", "\"sharp_edges\"",
-                          "\"lfs\"", "\"dihedral\"", "\"edge_edge\"", "\"edge_facet\"", "\"input_box\"",
-                          "\"bounding_box\"", "\"box_margin\":0.5", "\"internal\"", "\"external\"",
-                          "\"edge_edge\":[{\"vertex\":0,\"edge1\":", "\"edge_facet\":[{\"vertex\":0,\"edge\":",
-                          "\"input_box\":{\"lo\":[0,0,0],\"hi\":[1,", "\"dihedral_angles\":9",
-                          "\"sharp_edges\":2"})
+  for (const char* key :
+       {"\"counts\"", "\"phi_m_degrees\"", "\"sharp_vertices\":[0,2,3,5]", "\"sharp_edges\"", "\"lfs\"", "\"dihedral\"",
+        "\"edge_edge\"", "\"edge_facet\"", "\"input_box\"", "\"bounding_box\"", "\"box_margin\":0.5", "\"internal\"",
+        "\"external\"", "\"edge_edge\":[{\"vertex\":0,\"edge1\":", "\"edge_facet\":[{\"vertex\":0,\"edge\":",
+        "\"input_box\":{\"lo\":[0,0,0],\"hi\":[1,", "\"dihedral_angles\":9", "\"sharp_edges\":2"})
     EXPECT_NE(s.find(key), std::string::npos) << key << " in " << s.substr(0, 400);
   EXPECT_EQ(s.front(), '{');
   EXPECT_EQ(s.back(), '}');
@@ -606,8 +608,7 @@ double sampled_edge_facet(const PLC& plc, int u, int v, int f, int samples) {
     Point3 d, c;
     for (int k = 0; k < 3; ++k) d[k] = p[k] - pu[k];
     c = {{d[1] * w[2] - d[2] * w[1], d[2] * w[0] - d[0] * w[2], d[0] * w[1] - d[1] * w[0]}};
-    return deg(std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]),
-                          d[0] * w[0] + d[1] * w[1] + d[2] * w[2]));
+    return deg(std::atan2(std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]), d[0] * w[0] + d[1] * w[1] + d[2] * w[2]));
   };
   double best = 180;
   const std::size_t m = loop.size();
@@ -716,8 +717,7 @@ TEST(Analysis, AngleBudgetRefusesHugeVertexDegree) {
 TEST(Analysis, SelfIntersectionBudgetIsNamed) {
   const int n = 100000;
   PolygonSoup soup;
-  for (int i = 0; i < n; ++i)
-    soup.points.push_back({{std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n), 0}});
+  for (int i = 0; i < n; ++i) soup.points.push_back({{std::cos(2 * kPi * i / n), std::sin(2 * kPi * i / n), 0}});
   soup.points.push_back({{0, 0, 1}});
   soup.faces.emplace_back();
   for (int i = n - 1; i >= 0; --i) soup.faces[0].push_back(i);
@@ -763,13 +763,12 @@ TEST(Analysis, SharedModels) {
     }
     const auto start = std::chrono::steady_clock::now();
     const Analysis a = analyze(plc);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     check_invariants(plc, a, std::max<std::size_t>(1, a.sharp_vertices.size() / 400));
     ++analysed;
     std::printf("  %-40s V %6zu E %6zu F %6zu  sharp V %6zu E %6zu  phi_m %9.4f  %8.1f ms\n",
-                file.filename().string().c_str(), plc.vertices.size(), plc.edges.size(),
-                plc.facets.size(), a.sharp_vertices.size(), a.sharp_edges.size(), a.phi_m_degrees, ms);
+                file.filename().string().c_str(), plc.vertices.size(), plc.edges.size(), plc.facets.size(),
+                a.sharp_vertices.size(), a.sharp_edges.size(), a.phi_m_degrees, ms);
   }
   std::printf("  %d models analysed\n", analysed);
 }

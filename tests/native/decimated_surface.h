@@ -39,15 +39,12 @@ struct DecimationConfig {
   double min_normal_cos = 0.3;
 };
 
-inline const char* shape_name(Shape s) {
-  return s == Shape::sphere ? "sphere" : s == Shape::torus ? "torus" : "blobs";
-}
+inline const char* shape_name(Shape s) { return s == Shape::sphere ? "sphere" : s == Shape::torus ? "torus" : "blobs"; }
 
 inline std::string describe(const DecimationConfig& c) {
   char text[160];
-  std::snprintf(text, sizeof text, "%s seed %llu, %d vertices, perturbation %g, normal cos %g",
-                shape_name(c.shape), static_cast<unsigned long long>(c.seed), c.target_vertices, c.perturbation,
-                c.min_normal_cos);
+  std::snprintf(text, sizeof text, "%s seed %llu, %d vertices, perturbation %g, normal cos %g", shape_name(c.shape),
+                static_cast<unsigned long long>(c.seed), c.target_vertices, c.perturbation, c.min_normal_cos);
   return text;
 }
 
@@ -71,11 +68,11 @@ inline double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 
 inline TriSurface icosphere(int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
   TriSurface s;
-  s.points = {{{-1, t, 0}}, {{1, t, 0}}, {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}}, {{0, 1, t}},
-              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}}, {{t, 0, 1}}, {{-t, 0, -1}}, {{-t, 0, 1}}};
-  s.faces = {{{0, 11, 5}}, {{0, 5, 1}},  {{0, 1, 7}},  {{0, 7, 10}}, {{0, 10, 11}}, {{1, 5, 9}}, {{5, 11, 4}},
+  s.points = {{{-1, t, 0}},  {{1, t, 0}},  {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}},  {{0, 1, t}},
+              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}},  {{t, 0, 1}},  {{-t, 0, -1}}, {{-t, 0, 1}}};
+  s.faces = {{{0, 11, 5}},  {{0, 5, 1}},  {{0, 1, 7}},  {{0, 7, 10}}, {{0, 10, 11}}, {{1, 5, 9}}, {{5, 11, 4}},
              {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},  {{3, 9, 4}},  {{3, 4, 2}},   {{3, 2, 6}}, {{3, 6, 8}},
-             {{3, 8, 9}},  {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}}, {{8, 6, 7}},   {{9, 8, 1}}};
+             {{3, 8, 9}},   {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}}, {{8, 6, 7}},   {{9, 8, 1}}};
   auto unit = [](Point3 p) {
     const double l = std::sqrt(dot3(p, p));
     return Point3{{p[0] / l, p[1] / l, p[2] / l}};

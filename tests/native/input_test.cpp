@@ -123,39 +123,34 @@ TEST(InputOff, Errors) {
   expect_error([] { off("PLY\n4 4 0\n"); }, InputErrorKind::syntax, "line 1");
   expect_error([] { off("OFF\n4 x 0\n"); }, InputErrorKind::syntax, "line 2");
   expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1e 0\n"); }, InputErrorKind::syntax, "line 5");
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 a 3\n"); },
-               InputErrorKind::syntax, "line 8");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 a 3\n"); }, InputErrorKind::syntax,
+               "line 8");
   // Truncated: the file ends before the counts are met.
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"); },
-               InputErrorKind::truncated, "line 9");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"); }, InputErrorKind::truncated,
+               "line 9");
   expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0"); }, InputErrorKind::truncated, "line 4");
   expect_error([] { off("OFF\n4"); }, InputErrorKind::truncated, "line 2");
   // Non-finite coordinates name the vertex and the line.
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 nan 0\n0 1 0\n0 0 1\n"); },
-               InputErrorKind::non_finite, "line 4: vertex 1");
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 -inf\n"); },
-               InputErrorKind::non_finite, "vertex 3");
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1e999\n"); },
-               InputErrorKind::non_finite, "line 6");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 nan 0\n0 1 0\n0 0 1\n"); }, InputErrorKind::non_finite,
+               "line 4: vertex 1");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 -inf\n"); }, InputErrorKind::non_finite, "vertex 3");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1e999\n"); }, InputErrorKind::non_finite, "line 6");
   // Bad indices name the face and the line.
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 4\n"); },
-               InputErrorKind::bad_index, "line 8: face 1");
-  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 -2 1\n"); },
-               InputErrorKind::bad_index, "line 7: face 0");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 4\n"); }, InputErrorKind::bad_index,
+               "line 8: face 1");
+  expect_error([] { off("OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 -2 1\n"); }, InputErrorKind::bad_index,
+               "line 7: face 0");
   // Limits.
   InputLimits small;
   small.max_points = 3;
   const std::string tet = kTetOff;
-  expect_error([&] { read_off(tet.data(), tet.size(), small); }, InputErrorKind::too_large,
-               "line 2");
+  expect_error([&] { read_off(tet.data(), tet.size(), small); }, InputErrorKind::too_large, "line 2");
   InputLimits tiny_faces;
   tiny_faces.max_face_size = 2;
-  expect_error([&] { read_off(tet.data(), tet.size(), tiny_faces); }, InputErrorKind::too_large,
-               "line 7");
+  expect_error([&] { read_off(tet.data(), tet.size(), tiny_faces); }, InputErrorKind::too_large, "line 7");
   InputLimits few_bytes;
   few_bytes.max_bytes = 10;
-  expect_error([&] { read_off(tet.data(), tet.size(), few_bytes); }, InputErrorKind::too_large,
-               "bytes");
+  expect_error([&] { read_off(tet.data(), tet.size(), few_bytes); }, InputErrorKind::too_large, "bytes");
   // A huge count in a tiny file is truncated, not an allocation failure.
   expect_error([] { off("OFF\n4000000 1 0\n0 0 0\n"); }, InputErrorKind::truncated, "line 4");
 }
@@ -220,8 +215,7 @@ void expect_stl_tet(const PolygonSoup& s, const std::vector<Tri>& tris) {
   ASSERT_EQ(s.faces.size(), tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t)
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(s.points[s.faces[t][c]][k], static_cast<double>(tris[t].c[c][k]));
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(s.points[s.faces[t][c]][k], static_cast<double>(tris[t].c[c][k]));
 }
 
 TEST(InputStl, AsciiAndBinary) {
@@ -266,14 +260,17 @@ TEST(InputStl, Errors) {
   const auto tris = tet_tris();
   const std::string a = ascii_stl(tris);
   expect_error([] { read_stl("", 0); }, InputErrorKind::empty, "empty");
-  expect_error([] { std::string s = "solid x\nendsolid x\n"; read_stl(s.data(), s.size()); },
-               InputErrorKind::empty, "no triangles");
+  expect_error(
+      [] {
+        std::string s = "solid x\nendsolid x\n";
+        read_stl(s.data(), s.size());
+      },
+      InputErrorKind::empty, "no triangles");
   // Truncated ASCII: cut in the middle of the second facet.
   const std::string cut = a.substr(0, a.find("vertex", a.find("facet", 20)) + 10);
   expect_error([&] { read_stl(cut.data(), cut.size()); }, InputErrorKind::truncated, "line 11");
   const std::string no_end = a.substr(0, a.find("endsolid"));
-  expect_error([&] { read_stl(no_end.data(), no_end.size()); }, InputErrorKind::truncated,
-               "endsolid");
+  expect_error([&] { read_stl(no_end.data(), no_end.size()); }, InputErrorKind::truncated, "endsolid");
   // Garbled keyword on line 4 and a garbled number on line 5.
   std::string bad = a;
   bad.replace(bad.find("vertex"), 6, "vertx");
@@ -288,18 +285,15 @@ TEST(InputStl, Errors) {
   const std::string bcut = b.substr(0, 84 + 50 * 2 + 20);
   expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
                "not an STL file: it starts with 'bin  ");
-  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
-               "(204 bytes)");
+  expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax, "(204 bytes)");
   expect_error([&] { read_stl(bcut.data(), bcut.size()); }, InputErrorKind::syntax,
                "declaring 4 triangles would make it 284 bytes long");
   std::string bnan = b;
   const float q = std::nanf("");
   std::memcpy(&bnan[84 + 50 * 3 + 12 + 4], &q, 4);
-  expect_error([&] { read_stl(bnan.data(), bnan.size()); }, InputErrorKind::non_finite,
-               "triangle 3");
+  expect_error([&] { read_stl(bnan.data(), bnan.size()); }, InputErrorKind::non_finite, "triangle 3");
   std::string short_header = "abc";
-  expect_error([&] { read_stl(short_header.data(), short_header.size()); },
-               InputErrorKind::truncated, "header");
+  expect_error([&] { read_stl(short_header.data(), short_header.size()); }, InputErrorKind::truncated, "header");
   InputLimits few;
   few.max_faces = 2;
   expect_error([&] { read_stl(b.data(), b.size(), few); }, InputErrorKind::too_large, "limit");
@@ -358,10 +352,10 @@ TEST(InputHonest, LineEndsLfCrlfAndCr) {
     std::string bad = with_line_ends("OFF\n4 4 6\n0 0 0\n1 nan 0\n0 1 0\n0 0 1\n", end);
     expect_error([&] { any(bad); }, InputErrorKind::non_finite, "line 4: vertex 1");
     // Comments and colours end at any line end, too.
-    const std::string commented =
-        with_line_ends("# comment\nOFF # header\n4 4 6\n0 0 0 # c\n1 0 0\n0 1 0\n0 0 1\n"
-                       "3 0 2 1 0.5 0.5 0.5\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
-                       end);
+    const std::string commented = with_line_ends(
+        "# comment\nOFF # header\n4 4 6\n0 0 0 # c\n1 0 0\n0 1 0\n0 0 1\n"
+        "3 0 2 1 0.5 0.5 0.5\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+        end);
     expect_tet(any(commented));
   }
 }
@@ -393,8 +387,7 @@ TEST(InputHonest, NeitherOffNorStl) {
                "not an OFF or STL file: it starts with 'PLY\\x0aformat ascii 1.0\\x0a'");
   const std::string text(200, 'x');
   expect_error([&] { any(text); }, InputErrorKind::syntax, "not an OFF or STL file");
-  expect_error([] { any(std::string("\0\0\0", 3)); }, InputErrorKind::truncated,
-               "'\\x00\\x00\\x00' (3 bytes)");
+  expect_error([] { any(std::string("\0\0\0", 3)); }, InputErrorKind::truncated, "'\\x00\\x00\\x00' (3 bytes)");
 }
 
 TEST(InputHonest, MessagesQuoteBytesEscaped) {
@@ -404,15 +397,21 @@ TEST(InputHonest, MessagesQuoteBytesEscaped) {
   // message cannot end at the NUL and show a valid-looking "1".
   const std::string nul = std::string("OFF\n4 4 6\n0 0 0\n1") + '\0' + "5 0 0\n0 1 0\n0 0 1\n";
   expect_error([&] { any(nul); }, InputErrorKind::syntax, "line 4: vertex 1: bad coordinate '1\\x005'");
-  const std::string nul_index =
-      std::string(kTetOff).replace(std::string(kTetOff).find("3 0 1 3"), 7, std::string("3 0 1\0""3", 7));
+  const std::string nul_index = std::string(kTetOff).replace(std::string(kTetOff).find("3 0 1 3"), 7,
+                                                             std::string("3 0 1\0"
+                                                                         "3",
+                                                                         7));
   expect_error([&] { any(nul_index); }, InputErrorKind::syntax, "bad vertex index '1\\x003'");
-  const std::string stl_nul = std::string("solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1") +
-                              '\0' + "7 0 0\n";
-  expect_error([&] { any(stl_nul); }, InputErrorKind::syntax,
-               "line 5: bad vertex coordinate '1\\x007'");
+  const std::string stl_nul =
+      std::string("solid s\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1") + '\0' + "7 0 0\n";
+  expect_error([&] { any(stl_nul); }, InputErrorKind::syntax, "line 5: bad vertex coordinate '1\\x007'");
   expect_error([] { off("\xef\xbb\xbfPLY\n"); }, InputErrorKind::syntax, "found 'PLY'");
-  expect_error([] { off("O\x01" "FF\n"); }, InputErrorKind::syntax, "found 'O\\x01FF'");
+  expect_error(
+      [] {
+        off("O\x01"
+            "FF\n");
+      },
+      InputErrorKind::syntax, "found 'O\\x01FF'");
 }
 
 TEST(InputHonest, FourVertexStlFacetIsASyntaxError) {

@@ -144,8 +144,7 @@ TEST(MeshReader, MeditVariantsOfOtherWriters) {
 
 TEST(MeshReader, TetgenVariants) {
   // 1-based numbering, attributes and markers, a 10-node tet with an attribute.
-  const std::string node =
-      "# TetGen\n4 3 1 1\n1 0 0 0 5.5 1\n2 1 0 0 5.5 1\n3 0 1 0 5.5 1\n4 0 0 1 5.5 0\n";
+  const std::string node = "# TetGen\n4 3 1 1\n1 0 0 0 5.5 1\n2 1 0 0 5.5 1\n3 0 1 0 5.5 1\n4 0 0 1 5.5 0\n";
   const std::string ele = "1 10 1\n1 1 3 2 4 1 1 1 1 1 1 0.25\n";
   const TetMesh r = read_tetgen(node.data(), node.size(), ele.data(), ele.size());
   ASSERT_EQ(r.vertices.size(), 4u);
@@ -226,9 +225,7 @@ TEST(MeshReader, FileErrors) {
     EXPECT_EQ(e.kind(), InputErrorKind::io);
     EXPECT_NE(std::string(e.what()).find("missing.mesh"), std::string::npos) << e.what();
   }
-  {
-    std::ofstream((dir / "only.ele").string()) << "1 4 0\n0 0 1 2 3\n";
-  }
+  { std::ofstream((dir / "only.ele").string()) << "1 4 0\n0 0 1 2 3\n"; }
   try {
     read_tet_mesh_file((dir / "only.ele").string());
     ADD_FAILURE() << "no error for a .ele without its .node";

@@ -75,9 +75,8 @@ std::set<std::string> documented_defects(const std::string& name) {
   };
   auto it = known.find(name);
   if (it != known.end()) return it->second;
-  return {"degenerate_face", "duplicate_face", "open_boundary", "non_manifold_edge",
-          "non_manifold_vertex", "not_orientable", "self_intersection", "zero_volume",
-          "too_few_faces"};
+  return {"degenerate_face", "duplicate_face",    "open_boundary", "non_manifold_edge", "non_manifold_vertex",
+          "not_orientable",  "self_intersection", "zero_volume",   "too_few_faces"};
 }
 
 void check_folder(const std::string& dir, bool has_sources) {
@@ -102,17 +101,16 @@ void check_folder(const std::string& dir, bool has_sources) {
         EXPECT_EQ(report.faces_read, soup.faces.size());
         std::size_t holes = 0;
         for (const auto& f : plc.facets) holes += f.loops.size() - 1;
-        std::cout << "[ model    ] " << name << ": " << plc.vertices.size() << " vertices, "
-                  << plc.edges.size() << " edges, " << plc.facets.size() << " facets ("
-                  << holes << " holes), " << warnings.size() << " warnings\n";
+        std::cout << "[ model    ] " << name << ": " << plc.vertices.size() << " vertices, " << plc.edges.size()
+                  << " edges, " << plc.facets.size() << " facets (" << holes << " holes), " << warnings.size()
+                  << " warnings\n";
       }
     } catch (const InputError& e) {
       EXPECT_TRUE(must_fail) << name << " rejected: " << e.what();
       if (must_fail) {
         EXPECT_EQ(documented_defects(name).count(error_kind_name(e.kind())), 1u)
             << name << ": " << error_kind_name(e.kind()) << ": " << e.what();
-        std::cout << "[ rejected ] " << name << ": " << error_kind_name(e.kind()) << ": "
-                  << e.what() << "\n";
+        std::cout << "[ rejected ] " << name << ": " << error_kind_name(e.kind()) << ": " << e.what() << "\n";
       }
     }
   }
@@ -151,8 +149,7 @@ void fuzz_folder(const std::string& dir) {
     for (int t = 0; t < trials; ++t) {
       std::string b = bytes;
       const int flips = 1 + static_cast<int>(rng() % 4);
-      for (int k = 0; k < flips && !b.empty(); ++k)
-        b[rng() % b.size()] = static_cast<char>(rng() & 0xff);
+      for (int k = 0; k < flips && !b.empty(); ++k) b[rng() % b.size()] = static_cast<char>(rng() & 0xff);
       must_not_crash(b, name + " flip trial " + std::to_string(t));
     }
   }

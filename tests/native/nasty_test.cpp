@@ -101,8 +101,9 @@ Soup spike(double degrees) {
   for (const auto& xy : std::vector<std::array<double, 2>>{{-w, -w}, {w, -w}, {w, w}, {-w, w}})
     s.points.push_back({{0.5 + xy[0], 0.5 + xy[1], 1}});
   s.points.push_back({{0.5, 0.5, 1 + h}});
-  s.faces.insert(s.faces.end(), {{4, 5, 9, 8}, {5, 6, 10, 9}, {6, 7, 11, 10}, {7, 4, 8, 11},
-                                 {8, 9, 12}, {9, 10, 12}, {10, 11, 12}, {11, 8, 12}});
+  s.faces.insert(
+      s.faces.end(),
+      {{4, 5, 9, 8}, {5, 6, 10, 9}, {6, 7, 11, 10}, {7, 4, 8, 11}, {8, 9, 12}, {9, 10, 12}, {10, 11, 12}, {11, 8, 12}});
   return s;
 }
 
@@ -122,9 +123,21 @@ Soup folded_box(double radians) {
 // and gap + skew at y = 1 (so nearly parallel, not parallel). The side faces
 // are given as triangles (the skewed tip makes some of them non-planar quads).
 Soup teeth(double gap, double skew) {
-  const std::vector<std::array<double, 2>> profile = {  // (x, z), counter-clockwise
-      {0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 2}, {1.5 + gap / 2, 1.5}, {2, 1}, {2, 0.5}, {1, 0.5}, {1, 1},
-      {1.5 - gap / 2, 1.5}, {1, 2}, {1, 3}, {0, 3}};
+  const std::vector<std::array<double, 2>> profile = {// (x, z), counter-clockwise
+                                                      {0, 0},
+                                                      {3, 0},
+                                                      {3, 3},
+                                                      {2, 3},
+                                                      {2, 2},
+                                                      {1.5 + gap / 2, 1.5},
+                                                      {2, 1},
+                                                      {2, 0.5},
+                                                      {1, 0.5},
+                                                      {1, 1},
+                                                      {1.5 - gap / 2, 1.5},
+                                                      {1, 2},
+                                                      {1, 3},
+                                                      {0, 3}};
   const int n = static_cast<int>(profile.size()), tip = 5;
   Soup s;
   for (int y = 0; y < 2; ++y)
@@ -152,11 +165,11 @@ Soup flat_tet(double h) {
 Soup icosphere(int levels) {
   const double t = (1 + std::sqrt(5.0)) / 2;
   Soup s;
-  s.points = {{{-1, t, 0}}, {{1, t, 0}}, {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}}, {{0, 1, t}},
-              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}}, {{t, 0, 1}}, {{-t, 0, -1}}, {{-t, 0, 1}}};
-  s.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  s.points = {{{-1, t, 0}},  {{1, t, 0}},  {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}},  {{0, 1, t}},
+              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}},  {{t, 0, 1}},  {{-t, 0, -1}}, {{-t, 0, 1}}};
+  s.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   auto unit = [](Point3 p) {
     const double l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     return Point3{{p[0] / l, p[1] / l, p[2] / l}};
@@ -512,8 +525,8 @@ TEST(Nasty, SliverTrianglesMeshOrReturn) {
   // coplanar, merged back into one facet.
   Soup fan = unit_box();
   fan.points.push_back({{0.5, 1e-9, 1}});
-  fan.faces = {{0, 3, 2, 1}, {4, 5, 8}, {5, 6, 8}, {6, 7, 8}, {7, 4, 8}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6},
-               {3, 0, 4, 7}};
+  fan.faces = {{0, 3, 2, 1}, {4, 5, 8},    {5, 6, 8},    {6, 7, 8},   {7, 4, 8},
+               {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   run({"coplanar_slivers", fan});
   // A point 1e-10 outside the middle of a top edge: a sliver triangle on the
   // top and a non-planar side split into slivers.

@@ -28,15 +28,10 @@ namespace {
 /// an unknown facet, -1).
 TetMesh two_tets() {
   TetMesh m;
-  m.vertices = {{{0, 0, 0}},
-                {{1.0 / 3.0, 0, 0}},
-                {{0, 0.1 + 0.2, 1e-300}},
-                {{-2.5e17, 0, 1}},
-                {{1, 1, 1.0 / 7.0}}};
+  m.vertices = {{{0, 0, 0}}, {{1.0 / 3.0, 0, 0}}, {{0, 0.1 + 0.2, 1e-300}}, {{-2.5e17, 0, 1}}, {{1, 1, 1.0 / 7.0}}};
   m.tets = {{{0, 1, 2, 3}}, {{1, 2, 3, 4}}};
   for (auto& t : m.tets) {
-    const TetQuality q =
-        tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    const TetQuality q = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
     if (q.volume < 0) std::swap(t[0], t[1]);
   }
   m.boundary = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 1, 4}}};
@@ -123,9 +118,8 @@ TEST(Output, MeditMissingFacetsAndEmptyMesh) {
   EXPECT_NE(s.find("\n3 4 5 0\n"), std::string::npos) << s;  // boundary[4], 1-based
   std::ostringstream empty;
   write_medit(empty, TetMesh{});
-  EXPECT_EQ(tokens(empty.str()),
-            (std::vector<std::string>{"MeshVersionFormatted", "2", "Dimension", "3", "Vertices",
-                                      "0", "Tetrahedra", "0", "Triangles", "0", "End"}));
+  EXPECT_EQ(tokens(empty.str()), (std::vector<std::string>{"MeshVersionFormatted", "2", "Dimension", "3", "Vertices",
+                                                           "0", "Tetrahedra", "0", "Triangles", "0", "End"}));
 }
 
 TEST(Output, TetgenStreamsRoundTrip) {
@@ -174,8 +168,7 @@ TEST(Output, TetgenFilesMatchStreams) {
   const TetMesh m = two_tets();
   const fs::path dir =
       fs::temp_directory_path() /
-      ("wqmesh_output_test_" +
-       std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+      ("wqmesh_output_test_" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
   fs::create_directories(dir);
   const std::string base = (dir / "mesh").string();
   write_tetgen(base, m);
@@ -202,8 +195,8 @@ struct Xml {
   /// The DataArray child with attribute Name = n, or the first unnamed one.
   const Xml* array(const std::string& n) const {
     for (const Xml& c : children)
-      if (c.name == "DataArray" && (n.empty() ? c.attrs.count("Name") == 0
-                                              : c.attrs.count("Name") && c.attrs.at("Name") == n))
+      if (c.name == "DataArray" &&
+          (n.empty() ? c.attrs.count("Name") == 0 : c.attrs.count("Name") && c.attrs.at("Name") == n))
         return &c;
     return nullptr;
   }
@@ -237,8 +230,8 @@ class XmlParser {
   }
   std::string name() {
     const std::size_t b = i_;
-    while (i_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_' ||
-                              s_[i_] == '-' || s_[i_] == ':'))
+    while (i_ < s_.size() &&
+           (std::isalnum(static_cast<unsigned char>(s_[i_])) || s_[i_] == '_' || s_[i_] == '-' || s_[i_] == ':'))
       ++i_;
     if (b == i_) fail("expected a name");
     return s_.substr(b, i_ - b);
@@ -414,19 +407,31 @@ TEST(Output, StatsJsonHasTable2Bins) {
   s.slivers = 4;
   s.min_dihedral_histogram[12] = 11;
   const std::string pretty = stats_json(s);
-  for (const char* key : {"\"0.6-1.4\": 7", "\"1.4-2.2\": 8", "\">2.2\": 9", "\"0-3\": 1",
-                          "\"3-5\": 2", "\"5-10\": 3", "\"vertices\": 5", "\"tets\": 2",
-                          "\"volume\": 0.1", "\"slivers\": 4",
-                          "\"radius_edge_bins\"", "\"dihedral_bins\"",
-                          "\"min_dihedral_histogram\"", "\"min_face_angle_histogram\"",
-                          "\"inverted\"", "\"max_radius_edge\"", "\"max_aspect_ratio\"",
-                          "\"min_dihedral_deg\"", "\"max_dihedral_deg\"",
-                          "\"min_face_angle_deg\"", "\"radius_edge_below\""})
+  for (const char* key : {"\"0.6-1.4\": 7",
+                          "\"1.4-2.2\": 8",
+                          "\">2.2\": 9",
+                          "\"0-3\": 1",
+                          "\"3-5\": 2",
+                          "\"5-10\": 3",
+                          "\"vertices\": 5",
+                          "\"tets\": 2",
+                          "\"volume\": 0.1",
+                          "\"slivers\": 4",
+                          "\"radius_edge_bins\"",
+                          "\"dihedral_bins\"",
+                          "\"min_dihedral_histogram\"",
+                          "\"min_face_angle_histogram\"",
+                          "\"inverted\"",
+                          "\"max_radius_edge\"",
+                          "\"max_aspect_ratio\"",
+                          "\"min_dihedral_deg\"",
+                          "\"max_dihedral_deg\"",
+                          "\"min_face_angle_deg\"",
+                          "\"radius_edge_below\""})
     EXPECT_NE(pretty.find(key), std::string::npos) << key << "\n" << pretty;
   const std::string compact = stats_json(s, false);
   EXPECT_EQ(compact.find('\n'), std::string::npos);
-  EXPECT_NE(compact.find("\"radius_edge_bins\":{\"0.6-1.4\":7,\"1.4-2.2\":8,\">2.2\":9}"),
-            std::string::npos)
+  EXPECT_NE(compact.find("\"radius_edge_bins\":{\"0.6-1.4\":7,\"1.4-2.2\":8,\">2.2\":9}"), std::string::npos)
       << compact;
   EXPECT_NE(compact.find("\"dihedral_bins\":{\"0-3\":1,\"3-5\":2,\"5-10\":3}"), std::string::npos);
   // The histogram: 90 counts, the 13th is 11.

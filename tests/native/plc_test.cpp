@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <numeric>
 #include <random>
-#include <iostream>
 #include <set>
 #include <string>
 #include <vector>
@@ -57,8 +57,7 @@ int expect_valid_plc(const PLC& plc) {
   for (std::size_t e = 0; e < plc.edges.size(); ++e) {
     const PlcEdge& E = plc.edges[e];
     EXPECT_TRUE(0 <= E.a && E.a < E.b && E.b < nv) << "edge " << e;
-    EXPECT_TRUE(edge_of.emplace(std::make_pair(E.a, E.b), static_cast<int>(e)).second)
-        << "edge " << e << " repeated";
+    EXPECT_TRUE(edge_of.emplace(std::make_pair(E.a, E.b), static_cast<int>(e)).second) << "edge " << e << " repeated";
     EXPECT_TRUE(E.facets[0] >= 0 && E.facets[0] < nf && E.facets[1] >= 0 && E.facets[1] < nf &&
                 E.facets[0] != E.facets[1])
         << "edge " << e;
@@ -82,8 +81,7 @@ int expect_valid_plc(const PLC& plc) {
         }
         used[a] = 1;
         auto it = edge_of.find({std::min(a, b), std::max(a, b)});
-        EXPECT_TRUE(it != edge_of.end()) << "facet " << f << " side " << a << "-" << b
-                                         << " is not an input edge";
+        EXPECT_TRUE(it != edge_of.end()) << "facet " << f << " side " << a << "-" << b << " is not an input edge";
         if (it != edge_of.end()) edge_facets[it->second].insert(f);
         ++directed[{a, b}];
       }
@@ -113,9 +111,9 @@ int expect_valid_plc(const PLC& plc) {
     }
     for (const auto& loop : F.loops)
       for (int v : loop)
-        EXPECT_EQ(CGAL::orientation(P(plc.vertices[L[0]]), P(plc.vertices[L[1]]),
-                                    P(plc.vertices[L[c]]), P(plc.vertices[v])),
-                  CGAL::COPLANAR)
+        EXPECT_EQ(
+            CGAL::orientation(P(plc.vertices[L[0]]), P(plc.vertices[L[1]]), P(plc.vertices[L[c]]), P(plc.vertices[v])),
+            CGAL::COPLANAR)
             << "facet " << f << " is not planar";
     EXPECT_NEAR(std::sqrt(dot(F.normal, F.normal)), 1.0, 1e-9) << "facet " << f;
     EXPECT_GT(dot(newell(plc, L), F.normal), 0) << "facet " << f << " outer loop";
@@ -132,8 +130,8 @@ int expect_valid_plc(const PLC& plc) {
     if (c < 0) continue;
     bool off_plane = false;
     for (int v : plc.facets[E.facets[1]].loops[0])
-      off_plane |= CGAL::orientation(P(plc.vertices[L[0]]), P(plc.vertices[L[1]]),
-                                     P(plc.vertices[L[c]]), P(plc.vertices[v])) != CGAL::COPLANAR;
+      off_plane |= CGAL::orientation(P(plc.vertices[L[0]]), P(plc.vertices[L[1]]), P(plc.vertices[L[c]]),
+                                     P(plc.vertices[v])) != CGAL::COPLANAR;
     EXPECT_TRUE(off_plane) << "facets " << E.facets[0] << " and " << E.facets[1] << " coplanar";
   }
   // No vertex inside an edge: a vertex of two edges is a real corner.
@@ -145,8 +143,7 @@ int expect_valid_plc(const PLC& plc) {
   for (int v = 0; v < nv; ++v) {
     EXPECT_GE(nbrs[v].size(), 2u) << "vertex " << v;
     if (nbrs[v].size() == 2)
-      EXPECT_FALSE(CGAL::collinear(P(plc.vertices[nbrs[v][0]]), P(plc.vertices[v]),
-                                   P(plc.vertices[nbrs[v][1]])))
+      EXPECT_FALSE(CGAL::collinear(P(plc.vertices[nbrs[v][0]]), P(plc.vertices[v]), P(plc.vertices[nbrs[v][1]])))
           << "vertex " << v << " lies inside an edge";
   }
   // Outward: the enclosed volume (sum over loops of Newell . p / 6) is
@@ -229,8 +226,7 @@ TEST(Plc, StlCubeBecomesSixFacets) {
     EXPECT_EQ(F.loops[0].size(), 4u);
     EXPECT_EQ(F.source_faces.size(), 2u);
     // Axis-aligned unit normals.
-    EXPECT_NEAR(std::fabs(F.normal[0]) + std::fabs(F.normal[1]) + std::fabs(F.normal[2]), 1.0,
-                1e-12);
+    EXPECT_NEAR(std::fabs(F.normal[0]) + std::fabs(F.normal[1]) + std::fabs(F.normal[2]), 1.0, 1e-12);
   }
   EXPECT_EQ(r.faces_read, 12u);
   EXPECT_EQ(r.facets, 6u);
@@ -287,9 +283,14 @@ TEST(Plc, CollinearChainJoined) {
   // face and a split front face: the midpoint goes and one edge remains.
   auto pts = box_points(2, 2, 2);
   pts.push_back({1, 0, 2});  // 8
-  std::vector<std::vector<int>> faces = {{0, 3, 2, 1}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7},
+  std::vector<std::vector<int>> faces = {{0, 3, 2, 1},
+                                         {1, 2, 6, 5},
+                                         {2, 3, 7, 6},
+                                         {3, 0, 4, 7},
                                          // top (z = 2) split at 8
-                                         {4, 8, 7}, {8, 6, 7}, {8, 5, 6},
+                                         {4, 8, 7},
+                                         {8, 6, 7},
+                                         {8, 5, 6},
                                          // front (y = 0) as a pentagon through 8
                                          {0, 1, 5, 8, 4}};
   Warnings w;
@@ -489,7 +490,8 @@ TEST(Plc, RandomGridCubesAreValidOrRejected) {
       for (const auto& f : outward) {
         const Point3 &a = pts[f[0]], &b = pts[f[1]], &c = pts[f[2]];
         soup_volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-                        a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+                        a[2] * (b[0] * c[1] - b[1] * c[0])) /
+                       6;
       }
       for (const auto& F : plc.facets)
         for (const auto& loop : F.loops) plc_volume += dot(newell(plc, loop), plc.vertices[loop[0]]) / 6;
@@ -510,48 +512,86 @@ TEST(Plc, RandomGridCubesAreValidOrRejected) {
 TEST(Plc, Errors) {
   const auto pts = box_points(1, 1, 1);
   std::string m;
-  expect_error([] { Warnings w; build_plc(PolygonSoup{}, w); }, InputErrorKind::empty);
+  expect_error(
+      [] {
+        Warnings w;
+        build_plc(PolygonSoup{}, w);
+      },
+      InputErrorKind::empty);
   {
     auto p = pts;
     p[2][1] = std::nan("");
-    m = expect_error([&] { Warnings w; build_plc(soup_of(p, box_quads()), w); },
-                     InputErrorKind::non_finite);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, box_quads()), w);
+        },
+        InputErrorKind::non_finite);
     EXPECT_NE(m.find("point 2"), std::string::npos) << m;
   }
   {
     auto f = box_quads();
     f[4][1] = 8;
-    m = expect_error([&] { Warnings w; build_plc(soup_of(pts, f), w); }, InputErrorKind::bad_index);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(pts, f), w);
+        },
+        InputErrorKind::bad_index);
     EXPECT_NE(m.find("face 4 (line 104)"), std::string::npos) << m;
   }
   {
     // Three faces closing up combinatorially.
-    m = expect_error([&] { Warnings w; build_plc(soup_of(pts, {{0, 1, 2, 3}, {0, 3, 2}, {0, 2, 1}}), w); },
-                     InputErrorKind::too_few_faces);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(pts, {{0, 1, 2, 3}, {0, 3, 2}, {0, 2, 1}}), w);
+        },
+        InputErrorKind::too_few_faces);
   }
   {
     auto p = pts;
     p.push_back({0.5, 0, 0});  // 8, on the edge 0-1
     auto f = box_triangles();
     f.push_back({0, 8, 1});
-    m = expect_error([&] { Warnings w; build_plc(soup_of(p, f), w); }, InputErrorKind::degenerate_face);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, f), w);
+        },
+        InputErrorKind::degenerate_face);
     EXPECT_NE(m.find("face 12 (line 112)"), std::string::npos) << m;
     auto g = box_triangles();
     g[5] = {0, 0, 1};
-    m = expect_error([&] { Warnings w; build_plc(soup_of(pts, g), w); }, InputErrorKind::degenerate_face);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(pts, g), w);
+        },
+        InputErrorKind::degenerate_face);
     EXPECT_NE(m.find("face 5"), std::string::npos) << m;
   }
   {
     auto f = box_triangles();
     f.push_back({2, 1, 0});
-    m = expect_error([&] { Warnings w; build_plc(soup_of(pts, f), w); }, InputErrorKind::duplicate_face);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(pts, f), w);
+        },
+        InputErrorKind::duplicate_face);
     EXPECT_NE(m.find("face 1 (line 101)"), std::string::npos) << m;  // {0, 2, 1}
     EXPECT_NE(m.find("face 12 (line 112)"), std::string::npos) << m;
   }
   {
     auto f = box_triangles();
     f.pop_back();
-    m = expect_error([&] { Warnings w; build_plc(soup_of(pts, f), w); }, InputErrorKind::open_boundary);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(pts, f), w);
+        },
+        InputErrorKind::open_boundary);
     EXPECT_NE(m.find("vertex"), std::string::npos) << m;
   }
   {
@@ -564,7 +604,12 @@ TEST(Plc, Errors) {
       for (int& v : t) v = v == 0 ? 2 : v == 4 ? 6 : v + 8;
       f.push_back(t);
     }
-    m = expect_error([&] { Warnings w; build_plc(soup_of(p, f), w); }, InputErrorKind::non_manifold_edge);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, f), w);
+        },
+        InputErrorKind::non_manifold_edge);
     EXPECT_NE(m.find("4 faces"), std::string::npos) << m;
   }
   {
@@ -576,7 +621,12 @@ TEST(Plc, Errors) {
       for (int& v : t) v = v == 0 ? 6 : v + 8;
       f.push_back(t);
     }
-    m = expect_error([&] { Warnings w; build_plc(soup_of(p, f), w); }, InputErrorKind::non_manifold_vertex);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, f), w);
+        },
+        InputErrorKind::non_manifold_vertex);
     EXPECT_NE(m.find("(1, 1, 1)"), std::string::npos) << m;
   }
   {
@@ -589,7 +639,10 @@ TEST(Plc, Errors) {
       for (int j = 0; j < m2; ++j) p.push_back({double(i), double(j), double(i * j % 5)});
     auto id = [&](int i, int j) {
       // Going around i once mirrors j (Klein bottle).
-      if (i >= n) { i -= n; j = (m2 - j) % m2; }
+      if (i >= n) {
+        i -= n;
+        j = (m2 - j) % m2;
+      }
       return i * m2 + ((j % m2) + m2) % m2;
     };
     std::vector<std::vector<int>> f;
@@ -598,23 +651,33 @@ TEST(Plc, Errors) {
         f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
         f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
       }
-    expect_error([&] { Warnings w; build_plc(soup_of(p, f), w); }, InputErrorKind::not_orientable);
+    expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, f), w);
+        },
+        InputErrorKind::not_orientable);
   }
   {
     // A closed box with a spike poking through its top: a tetrahedron-like
     // tent whose apex is above the box, built as a second closed shell that
     // crosses the first.
     auto p = pts;
-    p.push_back({0.5, 0.5, 0.5});   // 8
-    p.push_back({0.2, 0.2, 1.5});   // 9
-    p.push_back({0.8, 0.2, 1.5});   // 10
-    p.push_back({0.5, 0.8, 1.5});   // 11
+    p.push_back({0.5, 0.5, 0.5});  // 8
+    p.push_back({0.2, 0.2, 1.5});  // 9
+    p.push_back({0.8, 0.2, 1.5});  // 10
+    p.push_back({0.5, 0.8, 1.5});  // 11
     auto f = box_triangles();
     f.push_back({8, 10, 9});
     f.push_back({8, 11, 10});
     f.push_back({8, 9, 11});
     f.push_back({9, 10, 11});
-    m = expect_error([&] { Warnings w; build_plc(soup_of(p, f), w); }, InputErrorKind::self_intersection);
+    m = expect_error(
+        [&] {
+          Warnings w;
+          build_plc(soup_of(p, f), w);
+        },
+        InputErrorKind::self_intersection);
     EXPECT_NE(m.find("face"), std::string::npos) << m;
   }
 }
@@ -665,7 +728,11 @@ TEST(Plc, FacetsWithSidesOfVeryDifferentMagnitudesGetUnitNormals) {
   const std::vector<std::vector<int>> faces = {{4, 2, 0}, {1, 3, 5}, {0, 2, 3, 1}, {2, 4, 5, 3}, {4, 0, 1, 5}};
   const std::vector<std::vector<Point3>> inputs = {
       {{0, 0, 0}, {0, 0, 2e-320}, {4, 0, 0}, {4, 0, 2}, {4, 3, 5}, {4, 5, 8}},
-      {{0, 0, 0}, {0, 0, 4.4444444444444442e+159}, {4, 0, 0}, {4, 0, 2}, {4, 0.703125, 0},
+      {{0, 0, 0},
+       {0, 0, 4.4444444444444442e+159},
+       {4, 0, 0},
+       {4, 0, 2},
+       {4, 0.703125, 0},
        {4, 0.69999999999999996, 125}}};
   for (const auto& pts : inputs) {
     Warnings w;
@@ -694,10 +761,20 @@ TEST(Plc, FacetsWithSidesOfVeryDifferentMagnitudesGetUnitNormals) {
 /// Pairs of triangles through the exact self-intersection test (validation.h):
 /// sharing an edge, a vertex or nothing; touching or not.
 TEST(Plc, SelfIntersectionPairs) {
-  const std::vector<Point3> p = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 1, 0} /*3*/,
-                                 {1, -1, 0} /*4*/, {0.5, 0.5, 0} /*5*/, {0, 0, 1} /*6*/,
-                                 {3, 3, -1} /*7*/, {3, 3, 1} /*8*/, {0.2, 0.2, -1} /*9*/,
-                                 {0.2, 0.2, 1} /*10*/, {-1, -1, 0} /*11*/, {-2, 0, 0} /*12*/, {5, 0, 0} /*13*/};
+  const std::vector<Point3> p = {{0, 0, 0},
+                                 {2, 0, 0},
+                                 {0, 2, 0},
+                                 {1, 1, 0} /*3*/,
+                                 {1, -1, 0} /*4*/,
+                                 {0.5, 0.5, 0} /*5*/,
+                                 {0, 0, 1} /*6*/,
+                                 {3, 3, -1} /*7*/,
+                                 {3, 3, 1} /*8*/,
+                                 {0.2, 0.2, -1} /*9*/,
+                                 {0.2, 0.2, 1} /*10*/,
+                                 {-1, -1, 0} /*11*/,
+                                 {-2, 0, 0} /*12*/,
+                                 {5, 0, 0} /*13*/};
   auto run = [&](std::vector<std::array<int, 3>> t) {
     validation::check_self_intersections(p, t, [](int i) { return "triangle " + std::to_string(i); });
   };
@@ -726,7 +803,6 @@ TEST(Plc, SelfIntersectionPairs) {
   EXPECT_NO_THROW(run({{0, 1, 2}, {7, 8, 13}}));
 }
 
-
 // Large non-convex polygons: a star of 30,000 vertices (15,000 reflex) is
 // triangulated, its reflex vertices found through the grid of the ear test
 // (it used to exceed the ear-clipping budget after 6e7 tests and be refused
@@ -746,12 +822,10 @@ TEST(Plc, LargeStarPolygonsTriangulate) {
   ASSERT_TRUE(validation::triangulate_polygon(pts, poly, tris));
   ASSERT_EQ(tris.size(), static_cast<std::size_t>(n - 2));
   auto area2 = [&](int a, int b, int c) {
-    return (pts[b][0] - pts[a][0]) * (pts[c][1] - pts[a][1]) -
-           (pts[b][1] - pts[a][1]) * (pts[c][0] - pts[a][0]);
+    return (pts[b][0] - pts[a][0]) * (pts[c][1] - pts[a][1]) - (pts[b][1] - pts[a][1]) * (pts[c][0] - pts[a][0]);
   };
   double polygon = 0, sum = 0;
-  for (int i = 0; i < n; ++i)
-    polygon += pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1];
+  for (int i = 0; i < n; ++i) polygon += pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1];
   std::set<int> used;
   for (const auto& t : tris) {
     EXPECT_GT(area2(t[0], t[1], t[2]), 0);

@@ -207,9 +207,7 @@ TEST(Quality, InvariantsOnRandomTets) {
     expect_well_defined(q);
     // Angles of each face sum to 180.
     for (int f = 0; f < 4; ++f)
-      EXPECT_NEAR(q.face_angle_deg[3 * f] + q.face_angle_deg[3 * f + 1] +
-                      q.face_angle_deg[3 * f + 2],
-                  180, 1e-9);
+      EXPECT_NEAR(q.face_angle_deg[3 * f] + q.face_angle_deg[3 * f + 1] + q.face_angle_deg[3 * f + 2], 180, 1e-9);
     // Every edge is a chord of the circumsphere.
     EXPECT_GE(q.radius, q.longest_edge / 2 * (1 - 1e-12));
     // R/l >= sqrt(6)/4 and r <= R/3 for every tetrahedron.
@@ -222,8 +220,8 @@ TEST(Quality, InvariantsOnRandomTets) {
       // Heron in the form 16 A^2 = 4 a^2 b^2 - (a^2 + b^2 - c^2)^2.
       return 0.25 * std::sqrt(std::max(0.0, 4 * a2 * b2 - (a2 + b2 - c2) * (a2 + b2 - c2)));
     };
-    const double s = 3 * std::fabs(q.volume) * std::sqrt(dist2(p[0], p[1])) /
-                     (2 * area(p[0], p[1], p[3]) * area(p[0], p[1], p[2]));
+    const double s =
+        3 * std::fabs(q.volume) * std::sqrt(dist2(p[0], p[1])) / (2 * area(p[0], p[1], p[3]) * area(p[0], p[1], p[2]));
     EXPECT_NEAR(std::sin(q.dihedral_deg[0] * kPi / 180), s, 1e-8);
     // Unweighted is the same as all-zero weights.
     const std::array<double, 4> zero{};
@@ -333,8 +331,7 @@ TEST(Quality, WeightedOrthosphereSatisfiesDefinition) {
     double M[3][3], r[3];
     for (int i = 0; i < 3; ++i) {
       for (int k = 0; k < 3; ++k) M[i][k] = 2 * (v[i + 1][k] - v[0][k]);
-      r[i] = dist2(v[i + 1], Point3{{0, 0, 0}}) - dist2(v[0], Point3{{0, 0, 0}}) - W[i + 1] +
-             W[0];
+      r[i] = dist2(v[i + 1], Point3{{0, 0, 0}}) - dist2(v[0], Point3{{0, 0, 0}}) - W[i + 1] + W[0];
     }
     const Point3 c = solve3(M, r);
     const double c2 = dist2(c, v[0]) - W[0];
@@ -388,14 +385,14 @@ TEST(Quality, StatsBinBoundaries) {
       fake(kInf, 50),  // > 2.2 (flat tet)
       fake(1, 0),      // dihedral [0, 3)
       fake(1, std::nextafter(3.0, 0.0)),
-      fake(1, 3),      // [3, 5)
+      fake(1, 3),  // [3, 5)
       fake(1, std::nextafter(5.0, 0.0)),
-      fake(1, 5),      // [5, 10)
+      fake(1, 5),  // [5, 10)
       fake(1, std::nextafter(10.0, 0.0)),
-      fake(1, 10),     // not binned
-      fake(3, 1),      // R/l > 2.2 with a small dihedral: not a sliver
-      fake(1, 60, 0),  // zero volume: inverted
-      fake(1, 60, -2), // negative volume: inverted
+      fake(1, 10),      // not binned
+      fake(3, 1),       // R/l > 2.2 with a small dihedral: not a sliver
+      fake(1, 60, 0),   // zero volume: inverted
+      fake(1, 60, -2),  // negative volume: inverted
   };
   TetMesh mesh;
   mesh.vertices.resize(5);
@@ -441,9 +438,9 @@ TEST(Quality, StatsBinBoundaries) {
 TEST(Quality, StatsOnSmallMeshOfKnownTets) {
   TetMesh mesh;
   const double h = 1e-3;
-  mesh.vertices = {kR0, kR1, kR2, kR3,                                     // regular
-                   {{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}},     // corner
-                   {{0, 0, 0}}, {{1, 0, h}}, {{1, 1, 0}}, {{0, 1, h}},     // sliver
+  mesh.vertices = {kR0,         kR1,         kR2,         kR3,                          // regular
+                   {{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}},                  // corner
+                   {{0, 0, 0}}, {{1, 0, h}}, {{1, 1, 0}}, {{0, 1, h}},                  // sliver
                    {{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1.0 / 3, 1.0 / 3, 1e-4}}};  // cap
   mesh.tets = {{{0, 1, 2, 3}}, {{4, 5, 6, 7}}, {{8, 9, 10, 11}}, {{12, 13, 14, 15}}};
   const MeshStats s = mesh_stats(mesh, mesh_quality(mesh));
@@ -454,9 +451,9 @@ TEST(Quality, StatsOnSmallMeshOfKnownTets) {
   EXPECT_EQ(s.radius_edge_below, 0u);
   EXPECT_EQ(s.radius_edge_bins[0], 3u);  // sqrt(6)/4, sqrt(3)/2, ~1/sqrt 2
   EXPECT_EQ(s.radius_edge_bins[1], 0u);
-  EXPECT_EQ(s.radius_edge_bins[2], 1u);  // the cap
-  EXPECT_EQ(s.dihedral_bins[0], 2u);     // sliver and cap
-  EXPECT_EQ(s.slivers, 1u);              // the cap has R/l > 2.2
+  EXPECT_EQ(s.radius_edge_bins[2], 1u);         // the cap
+  EXPECT_EQ(s.dihedral_bins[0], 2u);            // sliver and cap
+  EXPECT_EQ(s.slivers, 1u);                     // the cap has R/l > 2.2
   EXPECT_EQ(s.min_dihedral_histogram[70], 1u);  // 70.53
   EXPECT_EQ(s.min_dihedral_histogram[54], 1u);  // 54.74
   EXPECT_EQ(s.min_dihedral_histogram[0], 2u);
@@ -522,7 +519,7 @@ TEST(TetQuality, CornersAtTheLargestDoublesGiveTheRightAngles) {
   const TetQuality q0 = tet_quality({{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}});
   EXPECT_NEAR(q.min_dihedral_deg, q0.min_dihedral_deg, 1e-12);
   EXPECT_NEAR(q.radius_edge, q0.radius_edge, 1e-12);
-  EXPECT_EQ(q.volume, kInf);  // (2e308)^3 / 6 is beyond double range
+  EXPECT_EQ(q.volume, kInf);         // (2e308)^3 / 6 is beyond double range
   EXPECT_EQ(q.shortest_edge, kInf);  // 2e308: beyond double range too
   const TetQuality h = tet_quality({{-s / 2, -s / 2, -s / 2}}, {{s / 2, -s / 2, -s / 2}}, {{-s / 2, s / 2, -s / 2}},
                                    {{-s / 2, -s / 2, s / 2}});

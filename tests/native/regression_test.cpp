@@ -54,8 +54,7 @@ DecimationConfig config(Shape shape, std::uint64_t seed, int vertices, double pe
 invariants::Input generated(const DecimationConfig& c) {
   const std::string off = testing::to_off(testing::decimated_surface(c));
   if (const char* dir = std::getenv("WQMESH_REGRESSION_DIR"))
-    std::ofstream(std::string(dir) + "/" + testing::shape_name(c.shape) + "-" + std::to_string(c.seed) + ".off")
-        << off;
+    std::ofstream(std::string(dir) + "/" + testing::shape_name(c.shape) + "-" + std::to_string(c.seed) + ".off") << off;
   return invariants::from_off(off);
 }
 
@@ -136,8 +135,9 @@ TEST(Regression, CancelFromAnotherThreadInTheMiddleOfEachPhase) {
     const double delay = seconds_since(cancelled_at);
     canceller.join();
     ASSERT_TRUE(inside.load()) << "the run never reported progress from inside " << phase;
-    std::printf("cancel in %s: returned %.1f ms after the flag was set (of which the extraction %.1f ms), %zu vertices\n",
-                phase.c_str(), 1000 * delay, r.phases.empty() ? 0.0 : 1000 * r.phases.back().time_s, r.all_vertices);
+    std::printf(
+        "cancel in %s: returned %.1f ms after the flag was set (of which the extraction %.1f ms), %zu vertices\n",
+        phase.c_str(), 1000 * delay, r.phases.empty() ? 0.0 : 1000 * r.phases.back().time_s, r.all_vertices);
     EXPECT_EQ(r.stopped, "cancelled");
     EXPECT_LT(delay, 5.0);
     // The cancelled phase is the last one that ran before the extraction.

@@ -138,8 +138,8 @@ TEST(Scale, PowerOfTwoCubesGiveTheUnitCubesMeshScaled) {
 // conform, 1e160 ran to the vertex limit and 1e60 reported 90 degrees for
 // the smallest dihedral.
 TEST(Scale, DecimalCubesAreMeshedOrRefusedByTheirVolume) {
-  for (int k : {-300, -250, -200, -150, -103, -102, -100, -80, -60, -30, -10, -3, 0, 3, 10, 30, 60, 70, 80,
-                100, 102, 103, 150, 160, 200, 250, 300, 308}) {
+  for (int k : {-300, -250, -200, -150, -103, -102, -100, -80, -60, -30, -10, -3,  0,   3,
+                10,   30,   60,   70,   80,   100,  102,  103, 150, 160, 200, 250, 300, 308}) {
     const double s = std::pow(10.0, k);
     const ScaledRun r = run(box_off(0, s));
     const std::string what = "cube of side 1e" + std::to_string(k);
@@ -196,7 +196,8 @@ TEST(Scale, SubnormalOffsetsMeshWithEveryInvariant) {
   expect_meshed(run(corner_tet_off({{-d, d, 2 * d}}, {{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}})), "mixed offsets");
   // Scaled to 1e-100 the same shapes keep their subnormal offsets exact.
   const double s = 1e-100;
-  expect_meshed(run(corner_tet_off({{-d, 0, 0}}, {{{s, 0, 0}}, {{0, s, 0}}, {{0, 0, s}}})), "1e-100 tet, corner -1e-310");
+  expect_meshed(run(corner_tet_off({{-d, 0, 0}}, {{{s, 0, 0}}, {{0, s, 0}}, {{0, 0, s}}})),
+                "1e-100 tet, corner -1e-310");
 }
 
 // The limit of the volume: a valid polyhedron never finishes with no tet.

@@ -2,13 +2,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "triangulation.h"
 
+#include "geometry.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <set>
-#include <cmath>
 #include <random>
+#include <set>
 
 namespace wqmesh {
 namespace {
@@ -17,8 +18,7 @@ double orient(const Point3& a, const Point3& b, const Point3& c, const Point3& d
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   const double w[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-         u[2] * (v[0] * w[1] - v[1] * w[0]);
+  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
 double power(const Point3& x, const Point3& p, double w) {
@@ -62,29 +62,12 @@ TEST(Triangulation, RandomPointsAreDelaunayAndConflictsMatchTheEmptySphereTest) 
   std::size_t expected = 0;
   for (const Tet& c : t.finite_cells()) {
     const Point3 &a = t.point(c[0]), &b = t.point(c[1]), &cc = t.point(c[2]), &d = t.point(c[3]);
-    // circumcenter by solving 3x3 linear system
-    double m[3][4];
-    const Point3* p[3] = {&b, &cc, &d};
-    for (int r = 0; r < 3; ++r) {
-      double rhs = 0;
-      for (int k = 0; k < 3; ++k) {
-        m[r][k] = 2 * ((*p[r])[k] - a[k]);
-        rhs += (*p[r])[k] * (*p[r])[k] - a[k] * a[k];
-      }
-      m[r][3] = rhs;
-    }
-    for (int col = 0; col < 3; ++col) {
-      int piv = col;
-      for (int r = col + 1; r < 3; ++r)
-        if (std::fabs(m[r][col]) > std::fabs(m[piv][col])) piv = r;
-      std::swap(m[col], m[piv]);
-      for (int r = 0; r < 3; ++r)
-        if (r != col) {
-          const double f = m[r][col] / m[col][col];
-          for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
-        }
-    }
-    const Point3 z{{m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]}};
+    // The circumcenter: the orthosphere of the unweighted points.
+    const Point3 p4[4] = {a, b, cc, d};
+    const double w4[4] = {0, 0, 0, 0};
+    Point3 z;
+    double z2;
+    if (!wqmesh::geometry::orthosphere(p4, w4, z, z2)) continue;
     if (power(q, z, power(a, z, 0)) < 0) ++expected;
   }
   EXPECT_EQ(finite_conflicts, expected);

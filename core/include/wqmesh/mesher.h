@@ -133,6 +133,9 @@ struct MeshResult {
   /// triangulation of every vertex of V (box included), else 0.
   double delaunay_floor_s = 0;
   std::size_t all_vertices = 0;  ///< |V|, the box and the outside included
+  /// How often a loop cap of the mesher was reached (beyond the paper: each
+  /// bounds a loop the paper lets run to its end; see CONTRIBUTING.md).
+  std::size_t caps_reached = 0;
 };
 
 /// A lower estimate of the vertices WQMESH needs for the two input edges that

@@ -23,13 +23,18 @@ void Mesher::conform() {
   make_protecting_balls();
 }
 
-bool Mesher::rule3_pass() {
-  // Rule 3: the midpoint of a sharp subsegment s on edge e that encroaches a
-  // subsegment or subfacet h, h and e in disjoint elements of P: split h.
+std::vector<std::uint64_t> Mesher::sharp_subsegment_keys() const {
   std::vector<std::uint64_t> keys;
   for (const auto& [k, s] : segs_)
     if (s.sharp) keys.push_back(k);
   std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+bool Mesher::rule3_pass() {
+  // Rule 3: the midpoint of a sharp subsegment s on edge e that encroaches a
+  // subsegment or subfacet h, h and e in disjoint elements of P: split h.
+  const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
   bool acted = false;
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
@@ -115,10 +120,7 @@ void Mesher::make_protecting_balls() {
   for (int u = 0; u < static_cast<int>(dom_.p.vertices.size()); ++u)
     if (dom_.ball_radius[u] > 0) balls.push_back({dom_.p.vertices[u], dom_.ball_radius[u], true});
   // At the end of CONFORM, the diametric balls of sharp subsegments doubled.
-  std::vector<std::uint64_t> keys;
-  for (const auto& [k, s] : segs_)
-    if (s.sharp) keys.push_back(k);
-  std::sort(keys.begin(), keys.end());
+  const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
   for (std::uint64_t k : keys) {
     const Subsegment& s = segs_.at(k);
     const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);

@@ -145,6 +145,7 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
   r.pumped_vertices = m.pumped_vertices;
   r.rule_points = m.rule_count;
+  r.caps_reached = m.caps_reached;
   r.all_vertices = m.vertices().size();
   if (options.measure_floor) {
     std::vector<Point3> points(m.vertices().size());

@@ -214,6 +214,8 @@ class Mesher {
   void split_subfacet(const Subfacet& h, Rule rule);
 
   // conform.cpp
+  /// The keys of the sharp subsegments, in increasing order.
+  std::vector<std::uint64_t> sharp_subsegment_keys() const;
   /// One pass of rule 3 over the sharp subsegments; whether it inserted.
   bool rule3_pass();
   /// With max_size: splits sharp subsegments longer than 2/3 max_size before
