@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry.h"
 #include "wqmesh/types.h"
 
 namespace wqmesh::testing {
@@ -55,12 +56,6 @@ struct TriSurface {
 
 namespace detail {
 
-inline Point3 sub3(const Point3& a, const Point3& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-inline Point3 cross3(const Point3& a, const Point3& b) {
-  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-}
-inline double dot3(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
 /// A uniform double in [0, 1) from the top 53 bits.
 inline double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
 
@@ -74,7 +69,7 @@ inline TriSurface icosphere(int levels) {
              {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},  {{3, 9, 4}},  {{3, 4, 2}},   {{3, 2, 6}}, {{3, 6, 8}},
              {{3, 8, 9}},   {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}}, {{8, 6, 7}},   {{9, 8, 1}}};
   auto unit = [](Point3 p) {
-    const double l = std::sqrt(dot3(p, p));
+    const double l = std::sqrt(geometry::dot(p, p));
     return Point3{{p[0] / l, p[1] / l, p[2] / l}};
   };
   for (Point3& p : s.points) p = unit(p);
@@ -127,7 +122,7 @@ inline TriSurface blobs(std::mt19937_64& rng) {
   std::vector<std::pair<Point3, double>> bumps;
   for (int k = 0; k < 5; ++k) {
     Point3 c{{2 * uniform(rng) - 1, 2 * uniform(rng) - 1, 2 * uniform(rng) - 1}};
-    const double l = std::sqrt(dot3(c, c));
+    const double l = std::sqrt(geometry::dot(c, c));
     if (l == 0) continue;
     for (double& x : c) x /= l;
     bumps.push_back({c, 0.3 + 0.6 * uniform(rng)});
@@ -135,8 +130,8 @@ inline TriSurface blobs(std::mt19937_64& rng) {
   for (Point3& p : s.points) {
     double r = 1;
     for (const auto& [c, a] : bumps) {
-      const Point3 d = sub3(p, c);
-      r += a * std::exp(-dot3(d, d) / 0.25);
+      const Point3 d = geometry::sub(p, c);
+      r += a * std::exp(-geometry::dot(d, d) / 0.25);
     }
     for (double& x : p) x *= r;
   }
@@ -165,7 +160,8 @@ inline TriSurface decimated_surface(const DecimationConfig& c) {
     return out;
   };
   auto normal = [&](const std::array<int, 3>& t) {
-    return cross3(sub3(s.points[t[1]], s.points[t[0]]), sub3(s.points[t[2]], s.points[t[0]]));
+    return geometry::cross(geometry::sub(s.points[t[1]], s.points[t[0]]),
+                           geometry::sub(s.points[t[2]], s.points[t[0]]));
   };
   // Half-edge collapse a -> b: a disappears, its triangles take b instead.
   auto try_collapse = [&](int a, int b) {
@@ -183,8 +179,8 @@ inline TriSurface decimated_surface(const DecimationConfig& c) {
       for (int& x : t)
         if (x == a) x = b;
       const Point3 n1 = normal(t);
-      const double l0 = std::sqrt(dot3(n0, n0)), l1 = std::sqrt(dot3(n1, n1));
-      if (!(l1 > 1e-9 * l0) || dot3(n0, n1) < c.min_normal_cos * l0 * l1) return false;
+      const double l0 = std::sqrt(geometry::dot(n0, n0)), l1 = std::sqrt(geometry::dot(n1, n1));
+      if (!(l1 > 1e-9 * l0) || geometry::dot(n0, n1) < c.min_normal_cos * l0 * l1) return false;
     }
     for (int f : vf[a]) {
       std::array<int, 3>& t = s.faces[f];
@@ -232,8 +228,8 @@ inline TriSurface decimated_surface(const DecimationConfig& c) {
     const auto& t = s.faces[f];
     out.faces.push_back({{index[t[0]], index[t[1]], index[t[2]]}});
     for (int i = 0; i < 3; ++i) {
-      const Point3 d = sub3(s.points[t[i]], s.points[t[(i + 1) % 3]]);
-      total += std::sqrt(dot3(d, d));
+      const Point3 d = geometry::sub(s.points[t[i]], s.points[t[(i + 1) % 3]]);
+      total += std::sqrt(geometry::dot(d, d));
       ++edges;
     }
   }

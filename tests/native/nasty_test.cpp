@@ -36,6 +36,7 @@
 
 #include <unistd.h>
 
+#include "geometry.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/report.h"
 
@@ -225,12 +226,10 @@ Soup lattice_sphere(int r2) {
 
 // ---- Invariants of a finished mesh ------------------------------------------------
 
-Point3 sub(const Point3& a, const Point3& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-Point3 cross(const Point3& a, const Point3& b) {
-  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-}
-double dot(const Point3& a, const Point3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Point3& a) { return std::sqrt(dot(a, a)); }
+using geometry::cross;
+using geometry::dot;
+using geometry::norm;
+using geometry::sub;
 
 void expect_meshed(const PLC& plc, const MeshResult& r) {
   ASSERT_TRUE(r.conforming);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry.h"
 #include "validation.h"
 #include "wqmesh/input.h"
 
@@ -25,21 +26,11 @@ namespace {
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 K::Point_3 P(const Point3& p) { return K::Point_3(p[0], p[1], p[2]); }
 
-/// Newell area vector (twice the vector area) of a closed polygon.
+/// Newell area vector (twice the vector area) of a closed polygon: the library's.
 std::array<double, 3> newell(const PLC& plc, const std::vector<int>& loop) {
-  std::array<double, 3> n{0, 0, 0};
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Point3& p = plc.vertices[loop[i]];
-    const Point3& q = plc.vertices[loop[(i + 1) % loop.size()]];
-    n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-    n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-    n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-  }
-  return n;
+  return geometry::newell_normal(plc.vertices, loop);
 }
-double dot(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
+using geometry::dot;
 }  // namespace
 
 /// Checks the contract of a PLC (types.h; paper, section 2). Also used by
