@@ -56,13 +56,13 @@
 
 namespace {
 
-std::size_t live_bytes = 0;                   // usable bytes of live operator-new blocks
-std::size_t peak_bytes = 0;                   // the largest live_bytes since reset
+std::size_t live_bytes = 0;                             // usable bytes of live operator-new blocks
+std::size_t peak_bytes = 0;                             // the largest live_bytes since reset
 std::size_t memory_cap = static_cast<std::size_t>(-1);  // maxMemoryBytes during mesh()
-bool cap_reached = false;    // an allocation went beyond the cap
-bool memory_short = false;   // the mesher must stop: cap crossed or ballast used
-bool deferred = false;       // the mesher runs: record shortages, do not refuse
-void* ballast = nullptr;     // raw malloc, released when malloc fails in the mesher
+bool cap_reached = false;                               // an allocation went beyond the cap
+bool memory_short = false;                              // the mesher must stop: cap crossed or ballast used
+bool deferred = false;                                  // the mesher runs: record shortages, do not refuse
+void* ballast = nullptr;                                // raw malloc, released when malloc fails in the mesher
 
 void* raw_alloc(std::size_t n, std::size_t align) {
   void* p = nullptr;
@@ -210,8 +210,7 @@ std::string read_options(const val& options, bool for_check, wqmesh::Options& ou
       if (!v.isTrue() && !v.isFalse()) return std::string(spec->name) + " must be true or false";
       value = v.isTrue() ? 1 : 0;
     } else {
-      if (!v.isNumber())
-        return std::string(spec->name) + " must be a number, got a " + v.typeOf().as<std::string>();
+      if (!v.isNumber()) return std::string(spec->name) + " must be a number, got a " + v.typeOf().as<std::string>();
       value = v.as<double>();
     }
     const std::string error = out.try_set(*spec, value, spec->name);
@@ -225,8 +224,8 @@ double byte_length(const val& bytes) { return bytes["length"].as<double>(); }
 
 std::string too_large_message(double length) {
   const wqmesh::InputLimits limits;
-  return "the input has " + std::to_string(static_cast<unsigned long long>(length)) +
-         " bytes, beyond the limit of " + std::to_string(limits.max_bytes);
+  return "the input has " + std::to_string(static_cast<unsigned long long>(length)) + " bytes, beyond the limit of " +
+         std::to_string(limits.max_bytes);
 }
 
 // A report for a failure that escaped check_polyhedron (which should catch
@@ -257,7 +256,7 @@ void copy_bytes(const val& bytes, std::string& data) {
 // Copies the bytes of a Uint8Array into the wasm heap, then reads, validates
 // and analyses them. Never throws to JS.
 std::string check(const val& bytes, const val& options, bool pretty) {
-  if (!bytes.instanceof(val::global("Uint8Array")))
+  if (!bytes.instanceof (val::global("Uint8Array")))
     return failure_json("io", "check() expects the file's bytes as a Uint8Array", pretty);
   wqmesh::Options o;
   const std::string option_error = read_options(options, true, o);
@@ -303,12 +302,14 @@ val error_value(const std::string& kind, const std::string& message) {
 val memory_error(double max_memory, const char* phase, std::size_t vertices) {
   const std::string where = std::string(" (in ") + phase + ", at " + std::to_string(vertices) + " vertices)";
   if (cap_reached)
-    return error_value("limit", "the run needs more than maxMemoryBytes = " +
-                                    std::to_string(static_cast<unsigned long long>(max_memory)) +
-                                    " bytes of wasm memory" + where +
-                                    ": lower maxVertices or raise maxMemoryBytes (at most 4294967296)");
-  return error_value("limit", "the run does not fit in the wasm memory (4 GB at most, less where the browser "
-                              "gives less)" + where + ": lower maxVertices or maxMemoryBytes");
+    return error_value(
+        "limit",
+        "the run needs more than maxMemoryBytes = " + std::to_string(static_cast<unsigned long long>(max_memory)) +
+            " bytes of wasm memory" + where + ": lower maxVertices or raise maxMemoryBytes (at most 4294967296)");
+  return error_value("limit",
+                     "the run does not fit in the wasm memory (4 GB at most, less where the browser "
+                     "gives less)" +
+                         where + ": lower maxVertices or maxMemoryBytes");
 }
 
 // Meshes the polyhedron in `bytes` with WQMESH. `options` holds options of the
@@ -317,7 +318,7 @@ val memory_error(double max_memory, const char* phase, std::size_t vertices) {
 // and cancels the run when it returns false. Never throws: failures come back
 // as { error: { kind, message } }.
 val mesh(const val& bytes, const val& options, const val& progress) {
-  if (!bytes.instanceof(val::global("Uint8Array")))
+  if (!bytes.instanceof (val::global("Uint8Array")))
     return error_value("io", "mesh() expects the file's bytes as a Uint8Array");
   wqmesh::Options run;
   const std::string option_error = read_options(options, false, run);
@@ -352,8 +353,8 @@ val mesh(const val& bytes, const val& options, const val& progress) {
       vertices = p.vertices;
       if (memory_short) throw StopForMemory();
       if (!js_progress) return true;
-      const val r = progress(std::string(phase), p.fraction, static_cast<double>(p.vertices),
-                             static_cast<double>(p.steps));
+      const val r =
+          progress(std::string(phase), p.fraction, static_cast<double>(p.vertices), static_cast<double>(p.steps));
       return !r.isFalse();
     };
     std::optional<wqmesh::Result> run_result;
@@ -422,8 +423,7 @@ struct BadResult {
 template <class T>
 std::vector<T> typed_array(const val& result, const char* name, const char* js_type, std::size_t width) {
   const val a = result[name];
-  if (!a.instanceof(val::global(js_type)))
-    throw BadResult{std::string("result.") + name + " must be a " + js_type};
+  if (!a.instanceof (val::global(js_type))) throw BadResult{std::string("result.") + name + " must be a " + js_type};
   std::vector<T> v(a["length"].as<std::size_t>());
   if (v.size() % width != 0)
     throw BadResult{std::string("result.") + name + " has " + std::to_string(v.size()) +
@@ -443,8 +443,8 @@ wqmesh::TetMesh mesh_of(const val& result, std::vector<int>& classes) {
   for (std::size_t i = 0; i < n; ++i) m.vertices.push_back({{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}});
   m.weights = typed_array<double>(result, "weights", "Float64Array", 1);
   if (m.weights.size() != n)
-    throw BadResult{"result.weights has " + std::to_string(m.weights.size()) + " entries for " +
-                    std::to_string(n) + " vertices"};
+    throw BadResult{"result.weights has " + std::to_string(m.weights.size()) + " entries for " + std::to_string(n) +
+                    " vertices"};
   const std::vector<std::uint32_t> tets = typed_array<std::uint32_t>(result, "tets", "Uint32Array", 4);
   const std::vector<std::uint32_t> tris = typed_array<std::uint32_t>(result, "boundary", "Uint32Array", 3);
   for (std::size_t i = 0; i < tets.size(); ++i)

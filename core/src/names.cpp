@@ -73,11 +73,23 @@ const std::vector<InputErrorKind>& all_error_kinds() {
   // Every enumerator of InputErrorKind (error.h), in its order; the facade
   // test checks that each name round-trips and that no two names are equal.
   using K = InputErrorKind;
-  static const std::vector<InputErrorKind> all = {
-      K::io, K::empty, K::syntax, K::truncated, K::too_large, K::non_finite,
-      K::bad_index, K::too_few_faces, K::degenerate_face, K::duplicate_face, K::open_boundary,
-      K::non_manifold_edge, K::non_manifold_vertex, K::not_orientable, K::self_intersection,
-      K::zero_volume, K::out_of_range};
+  static const std::vector<InputErrorKind> all = {K::io,
+                                                  K::empty,
+                                                  K::syntax,
+                                                  K::truncated,
+                                                  K::too_large,
+                                                  K::non_finite,
+                                                  K::bad_index,
+                                                  K::too_few_faces,
+                                                  K::degenerate_face,
+                                                  K::duplicate_face,
+                                                  K::open_boundary,
+                                                  K::non_manifold_edge,
+                                                  K::non_manifold_vertex,
+                                                  K::not_orientable,
+                                                  K::self_intersection,
+                                                  K::zero_volume,
+                                                  K::out_of_range};
   return all;
 }
 
@@ -95,15 +107,11 @@ const std::vector<OutputFormat>& all_output_formats() {
 std::optional<StopReason> stop_reason_from_string(const std::string& name) {
   return from_name(all_stop_reasons(), name);
 }
-std::optional<MeshPhase> mesh_phase_from_string(const std::string& name) {
-  return from_name(all_mesh_phases(), name);
-}
+std::optional<MeshPhase> mesh_phase_from_string(const std::string& name) { return from_name(all_mesh_phases(), name); }
 std::optional<InputErrorKind> error_kind_from_string(const std::string& name) {
   return from_name(all_error_kinds(), name);
 }
-std::optional<TetClass> tet_class_from_string(const std::string& name) {
-  return from_name(all_tet_classes(), name);
-}
+std::optional<TetClass> tet_class_from_string(const std::string& name) { return from_name(all_tet_classes(), name); }
 std::optional<OutputFormat> output_format_from_string(const std::string& name) {
   return from_name(all_output_formats(), name);
 }

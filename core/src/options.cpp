@@ -30,8 +30,7 @@ const std::vector<OptionSpec>& option_table() {
        "rho0 of rule 6: tets with circumradius over shortest edge (R/l) above it are split"},
       {"sliverAngle", "--sliver-angle", OptionType::number, 0, 90, 3, false, 0,
        "theta of rule 7 and PUMP, degrees: tets with a dihedral angle at most theta are slivers"},
-      {"pump", "--no-pump", OptionType::boolean, 0, 1, 1, false, 0,
-       "false: QMESH alone (no rule 7, no PUMP)"},
+      {"pump", "--no-pump", OptionType::boolean, 0, 1, 1, false, 0, "false: QMESH alone (no rule 7, no PUMP)"},
       {"maxVertices", "--max-vertices", OptionType::integer, 8, 1e9, 1e6, false, 0,
        "the run stops (stopped \"limit\", exit code 3) when the vertex count reaches it"},
       {"maxSize", "--max-size", OptionType::number, 0, 1e300, 0, false, 0,
@@ -72,12 +71,9 @@ std::string option_names(bool check_only) {
 
 std::string option_range_text(const OptionSpec& spec) {
   switch (spec.type) {
-    case OptionType::boolean:
-      return "true or false";
-    case OptionType::integer:
-      return "a whole number in [" + number_text(spec.min) + ", " + number_text(spec.max) + "]";
-    case OptionType::number:
-      break;
+    case OptionType::boolean: return "true or false";
+    case OptionType::integer: return "a whole number in [" + number_text(spec.min) + ", " + number_text(spec.max) + "]";
+    case OptionType::number: break;
   }
   return "a number in [" + number_text(spec.min) + ", " + number_text(spec.max) + "]";
 }
@@ -94,14 +90,22 @@ std::string check_option_value(const OptionSpec& spec, double value, const std::
 
 void apply_option(RunOptions& o, const OptionSpec& spec, double value) {
   const std::string n = spec.name;
-  if (n == "rho") o.mesh.rho0 = value;
-  else if (n == "sliverAngle") o.mesh.theta_deg = value;
-  else if (n == "pump") o.mesh.pump = value != 0;
-  else if (n == "maxVertices") o.mesh.max_vertices = static_cast<std::size_t>(value);
-  else if (n == "maxSize") o.mesh.max_size = value;
-  else if (n == "measureFloor") o.mesh.measure_floor = value != 0;
-  else if (n == "maxMemoryBytes") o.max_memory_bytes = value;
-  else if (n == "boxMargin") o.mesh.box_margin = value;  // the analysis reads it too: RunOptions::analysis()
+  if (n == "rho")
+    o.mesh.rho0 = value;
+  else if (n == "sliverAngle")
+    o.mesh.theta_deg = value;
+  else if (n == "pump")
+    o.mesh.pump = value != 0;
+  else if (n == "maxVertices")
+    o.mesh.max_vertices = static_cast<std::size_t>(value);
+  else if (n == "maxSize")
+    o.mesh.max_size = value;
+  else if (n == "measureFloor")
+    o.mesh.measure_floor = value != 0;
+  else if (n == "maxMemoryBytes")
+    o.max_memory_bytes = value;
+  else if (n == "boxMargin")
+    o.mesh.box_margin = value;  // the analysis reads it too: RunOptions::analysis()
 }
 
 double option_value(const RunOptions& o, const OptionSpec& spec) {
@@ -124,7 +128,10 @@ std::string options_json() {
     j.begin_object();
     j.field("name", s.name);
     j.key("flag");
-    if (s.flag != nullptr) j.value(s.flag); else j.null();
+    if (s.flag != nullptr)
+      j.value(s.flag);
+    else
+      j.null();
     j.field("type", s.type == OptionType::number ? "number" : s.type == OptionType::integer ? "integer" : "boolean");
     if (s.type == OptionType::boolean) {
       j.field("default", s.default_value != 0);

@@ -115,8 +115,8 @@ std::string Polyhedron::report_json(bool pretty) const { return check_json(*data
 
 Result mesh(const Polyhedron& polyhedron, const Options& options, const MeshProgressCallback& progress) {
   if (!polyhedron.valid())
-    throw std::invalid_argument("wqmesh::mesh: the polyhedron is not valid (" + polyhedron.data_->error_kind +
-                                ": " + polyhedron.data_->error + ")");
+    throw std::invalid_argument("wqmesh::mesh: the polyhedron is not valid (" + polyhedron.data_->error_kind + ": " +
+                                polyhedron.data_->error + ")");
   const auto t0 = std::chrono::steady_clock::now();
   const CheckResult& in = *polyhedron.data_;
   // B is part of the PLC (section 2): mesh with the analysis of this margin.
@@ -166,9 +166,7 @@ std::optional<OutputFormat> Result::format_of_path(const std::string& path) {
 void Result::write(std::ostream& out, OutputFormat format) const {
   if (!result_.conforming) throw std::logic_error("wqmesh: the mesh does not conform to the input");
   switch (format) {
-    case OutputFormat::medit:
-      write_medit(out, result_.mesh);
-      return;
+    case OutputFormat::medit: write_medit(out, result_.mesh); return;
     case OutputFormat::vtu: {
       TetLabels labels;
       for (TetClass c : result_.tet_class) labels.tet_class.push_back(static_cast<int>(c));
@@ -178,8 +176,7 @@ void Result::write(std::ostream& out, OutputFormat format) const {
       write_vtu(out, weighted, result_.quality, &labels);
       return;
     }
-    case OutputFormat::tetgen:
-      break;
+    case OutputFormat::tetgen: break;
   }
   throw std::invalid_argument("wqmesh: TetGen output is four files: use write_tetgen or write_file");
 }

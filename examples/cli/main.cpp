@@ -6,9 +6,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -216,9 +216,8 @@ int run_mesh(const std::vector<std::string>& args) {
   }
   const wqmesh::MeshResult& r = result.raw();
   if (!quiet)
-    std::cerr << "wqmesh: " << r.mesh.vertices.size() << " vertices, " << r.mesh.tets.size() << " tets, "
-              << r.slivers << " slivers, " << r.skinny << " skinny, " << r.violations << " violations, "
-              << seconds << " s\n";
+    std::cerr << "wqmesh: " << r.mesh.vertices.size() << " vertices, " << r.mesh.tets.size() << " tets, " << r.slivers
+              << " slivers, " << r.skinny << " skinny, " << r.violations << " violations, " << seconds << " s\n";
   if (result.stop_reason() != wqmesh::StopReason::done) {
     std::cerr << "wqmesh: stopped: " << wqmesh::to_string(result.stop_reason());
     if (!result.stop_message().empty()) std::cerr << ": " << result.stop_message();
@@ -293,9 +292,15 @@ int run_measure(const std::vector<std::string>& args) {
   j.field("slivers", s.slivers);
   j.field("volume_mesh", s.volume);
   j.key("volume_input");
-  if (std::isnan(volume_input)) j.null(); else j.value(volume_input);
+  if (std::isnan(volume_input))
+    j.null();
+  else
+    j.value(volume_input);
   j.key("relative_volume_error");
-  if (std::isnan(error)) j.null(); else j.value(error);
+  if (std::isnan(error))
+    j.null();
+  else
+    j.value(error);
   j.end_object();
   if (json) {
     std::cout << j.str() << "\n";

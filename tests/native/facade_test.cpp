@@ -205,7 +205,8 @@ TEST(Facade, WritesEveryFormat) {
   const fs::path dir = fs::temp_directory_path() / ("wqmesh_facade_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   r.write_file((dir / "spike.ele").string());
-  for (const char* ext : {".node", ".ele", ".face", ".edge"}) EXPECT_TRUE(fs::exists(dir / (std::string("spike") + ext)));
+  for (const char* ext : {".node", ".ele", ".face", ".edge"})
+    EXPECT_TRUE(fs::exists(dir / (std::string("spike") + ext)));
   EXPECT_THROW(r.write_file((dir / "no_such_folder" / "x.mesh").string()), std::runtime_error);
   fs::remove_all(dir);
 }

@@ -19,8 +19,8 @@ enum class OptionType { number, integer, boolean };
 /// One option. Booleans appear on the command line as one flag that sets
 /// `flag_value` (e.g. `--no-pump` sets pump to false).
 struct OptionSpec {
-  const char* name;      ///< camelCase, the JavaScript name, e.g. "sliverAngle"
-  const char* flag;      ///< the command-line flag, e.g. "--sliver-angle"; nullptr: wasm only
+  const char* name;  ///< camelCase, the JavaScript name, e.g. "sliverAngle"
+  const char* flag;  ///< the command-line flag, e.g. "--sliver-angle"; nullptr: wasm only
   OptionType type;
   double min, max;       ///< inclusive range (number, integer); 0, 1 for booleans
   double default_value;  ///< booleans: 0 or 1

@@ -113,8 +113,7 @@ class Polyhedron {
   /// content; at most limits.max_bytes bytes, refused as too_large before
   /// being read in full, from a pipe or a device too; a folder or an
   /// unreadable file is io), then as read_bytes.
-  static Polyhedron read_file(const std::string& path, const Options& options = {},
-                              const InputLimits& limits = {});
+  static Polyhedron read_file(const std::string& path, const Options& options = {}, const InputLimits& limits = {});
   /// Reads, validates and analyses `size` bytes (check_polyhedron, report.h),
   /// the bounding box with options.analysis().
   static Polyhedron read_bytes(const char* data, std::size_t size, const Options& options = {},
@@ -206,7 +205,6 @@ class Result {
 /// box margin, else it is recomputed with options.analysis() (the bounding
 /// box B is part of the PLC, section 2). Throws std::invalid_argument when
 /// the polyhedron is not valid, std::runtime_error on an internal failure.
-Result mesh(const Polyhedron& polyhedron, const Options& options = {},
-            const MeshProgressCallback& progress = {});
+Result mesh(const Polyhedron& polyhedron, const Options& options = {}, const MeshProgressCallback& progress = {});
 
 }  // namespace wqmesh
