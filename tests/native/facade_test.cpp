@@ -59,10 +59,12 @@ TEST(Names, TheStringsOfTheJsonAndTheJavaScriptPackageAreKept) {
 }
 
 TEST(Names, TheListOfErrorKindsHoldsEveryEnumerator) {
-  // all_error_kinds() is in declaration order from 0 with no gap, and the
-  // value after the last one has no name: an enumerator added to error.h
-  // without its name (error.cpp) and its place in the list fails here.
+  // all_error_kinds() is read off error_kind_name: from io, in declaration
+  // order, up to out_of_range, the last enumerator today (error.h).
   const auto& all = all_error_kinds();
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(all.front(), InputErrorKind::io);
+  EXPECT_EQ(all.back(), InputErrorKind::out_of_range);
   for (std::size_t i = 0; i < all.size(); ++i) EXPECT_EQ(static_cast<std::size_t>(all[i]), i);
   EXPECT_STREQ(error_kind_name(static_cast<InputErrorKind>(all.size())), "unknown");
 }

@@ -25,6 +25,13 @@ test('index.d.ts InputErrorKind is the list of error.h plus internal', () => {
   assert.deepEqual(dtsUnion('InputErrorKind'), [...kinds, 'internal']);
 });
 
+test('error.cpp names every enumerator of error.h by its own name, in order', () => {
+  const source = readFileSync(join(root, 'core/src/error.cpp'), 'utf8');
+  const cases = [...source.matchAll(/case InputErrorKind::(\w+): return "(\w+)";/g)];
+  for (const [, enumerator, name] of cases) assert.equal(name, enumerator);
+  assert.deepEqual(cases.map((c) => c[1]), errorKinds());
+});
+
 test('index.d.ts Phase and stopped are the names of names.h', () => {
   const names = readFileSync(join(root, 'core/src/names.cpp'), 'utf8');
   const phases = [...names.matchAll(/case MeshPhase::\w+: return "(\w+)";/g)].map((m) => m[1]);
