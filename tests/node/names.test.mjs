@@ -2,8 +2,9 @@
 // kinds of error.h against wasm/index.d.ts (InputErrorKind) and against what
 // the wasm module reports; the phases and stop reasons of names.h against the
 // .d.ts; the version of the CMake project against package.json, the wasm
-// module and the command line (`wqmesh --version`). WQMESH_CLI and
-// WQMESH_MODULE choose other builds than build/native and build/wasm.
+// module, wasm/options.mjs and the command line (`wqmesh --version`); the
+// web page's words for every kind. WQMESH_CLI and WQMESH_MODULE choose other
+// builds than build/native and build/wasm.
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
@@ -13,6 +14,7 @@ import { test } from 'node:test';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
 import { loadWqmesh } from '../../wasm/index.mjs';
+import { version as packagedVersion } from '../../wasm/options.mjs';
 import { cmakeVersion, dtsUnion, errorKinds } from './lib/names.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
@@ -56,6 +58,7 @@ test('the wasm module reports kinds of the list', async () => {
 test('package.json, the wasm module and the command line have the CMake project version', async () => {
   const version = cmakeVersion();
   assert.equal(JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).version, version);
+  assert.equal(packagedVersion, version, 'wasm/options.mjs (scripts/package_wasm.mjs writes it from the module)');
   const wqmesh = await loadWqmesh({ moduleUrl });
   assert.equal(wqmesh.version(), version);
   assert.ok(existsSync(cli), `the native command line is missing (${cli}): build it or set WQMESH_CLI`);
