@@ -68,11 +68,13 @@ inline double diag(const PLC& plc) {
 }
 
 inline double facet_area(const PLC& plc, const PlcFacet& f) {
+  // Relative to one vertex of the facet: exact enough far from the origin.
+  const Point3& o = plc.vertices[f.loops[0][0]];
   Point3 n{{0, 0, 0}};
   for (const auto& loop : f.loops)
     for (std::size_t i = 0; i < loop.size(); ++i) {
-      const Point3& a = plc.vertices[loop[i]];
-      const Point3& b = plc.vertices[loop[(i + 1) % loop.size()]];
+      const Point3 a = sub(plc.vertices[loop[i]], o);
+      const Point3 b = sub(plc.vertices[loop[(i + 1) % loop.size()]], o);
       n = mesher::add(n, cross(a, b));
     }
   return 0.5 * std::sqrt(dot(n, n));
@@ -87,6 +89,25 @@ inline void expect_invariants(const std::string& name, const Input& in, const Me
   const PLC& plc = in.plc;
   ASSERT_FALSE(m.tets.empty());
   const double d = diag(plc);
+  // A point the mesher inserts is rounded to doubles: near coordinates of
+  // 1e8, by up to 1.5e-8, so a Steiner point on a slanted facet or edge lies
+  // off it by that much, and the areas and the volume move by that much
+  // times the lengths and areas involved. `ulp` is that rounding (one unit in
+  // the last place of the largest coordinate); for inputs of unit size near
+  // the origin it is far below the relative tolerances.
+  double largest = 0;
+  for (const Point3& p : plc.vertices)
+    for (double x : p) largest = std::max(largest, std::fabs(x));
+  const double ulp = 2.220446049250313e-16 * largest;
+  const double tol = 1e-12 * d + 16 * ulp;
+  double surface = 0;
+  std::vector<double> perimeter(plc.facets.size(), 0);
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    surface += facet_area(plc, plc.facets[f]);
+    for (const auto& loop : plc.facets[f].loops)
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        perimeter[f] += std::sqrt(mesher::dist2(plc.vertices[loop[i]], plc.vertices[loop[(i + 1) % loop.size()]]));
+  }
 
   // Orientation and volume.
   double volume = 0;
@@ -96,7 +117,7 @@ inline void expect_invariants(const std::string& name, const Input& in, const Me
     volume += o / 6;
   }
   const double v_in = plc_volume(plc);
-  EXPECT_NEAR(volume, v_in, 1e-9 * std::fabs(v_in));
+  EXPECT_NEAR(volume, v_in, 1e-9 * std::fabs(v_in) + ulp * surface) << "mesh volume vs input volume";
 
   // Input vertices: vertex i of the mesh, at its exact coordinates.
   for (std::size_t i = 0; i < plc.vertices.size(); ++i) {
@@ -118,12 +139,11 @@ inline void expect_invariants(const std::string& name, const Input& in, const Me
     EXPECT_GT(dot(n, plc.facets[f].normal), 0);
     const Point3& o = plc.vertices[plc.facets[f].loops[0][0]];
     const Point3& fn = plc.facets[f].normal;
-    for (int k = 0; k < 3; ++k)
-      EXPECT_LE(std::fabs(dot(sub(m.vertices[t[k]], o), fn)) / std::sqrt(dot(fn, fn)), 1e-12 * d);
+    for (int k = 0; k < 3; ++k) EXPECT_LE(std::fabs(dot(sub(m.vertices[t[k]], o), fn)) / std::sqrt(dot(fn, fn)), tol);
   }
   for (std::size_t f = 0; f < plc.facets.size(); ++f) {
     const double a = facet_area(plc, plc.facets[f]);
-    EXPECT_NEAR(covered[f], a, 1e-9 * a) << "facet " << f;
+    EXPECT_NEAR(covered[f], a, 1e-9 * a + ulp * perimeter[f]) << "facet " << f << " is not covered exactly";
   }
 
   // Input edges: chains of mesh edges.
@@ -141,7 +161,7 @@ inline void expect_invariants(const std::string& name, const Input& in, const Me
       const double t = dot(av, ab) / len2;
       if (t < -1e-12 || t > 1 + 1e-12) continue;
       const Point3 off = sub(av, mesher::mul(ab, t));
-      if (dot(off, off) <= 1e-24 * d * d) on.push_back({t, int(v)});
+      if (dot(off, off) <= tol * tol) on.push_back({t, int(v)});
     }
     std::sort(on.begin(), on.end());
     ASSERT_GE(on.size(), 2u);
@@ -184,13 +204,15 @@ inline void expect_invariants(const std::string& name, const Input& in, const Me
       (void)q;
       // The orthosphere |z - p|^2 - w = Z^2 (the library's solve; the test is
       // of the triangulation, not of the solve).
-      const Point3 p4[4] = {m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]};
+      // Relative to t[0], so that large coordinates do not cancel.
+      const Point3& o = m.vertices[t[0]];
+      const Point3 p4[4] = {{{0, 0, 0}}, sub(m.vertices[t[1]], o), sub(m.vertices[t[2]], o), sub(m.vertices[t[3]], o)};
       const double w4[4] = {w[0], w[1], w[2], w[3]};
       Point3 z;
       double z2;
       if (!wqmesh::geometry::orthosphere(p4, w4, z, z2)) continue;
       const double wx = m.weights.empty() ? 0 : m.weights[x];
-      const double power = mesher::dist2(m.vertices[x], z) - wx - z2;
+      const double power = mesher::dist2(sub(m.vertices[x], o), z) - wx - z2;
       // Nearly flat tets have no orthosphere that doubles can tell.
       const TetQuality tq = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
       if (tq.min_dihedral_deg > 1e-3 && std::isfinite(z2))

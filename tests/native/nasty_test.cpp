@@ -37,6 +37,7 @@
 #include <unistd.h>
 
 #include "geometry.h"
+#include "mesh_invariants.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/report.h"
 
@@ -226,122 +227,10 @@ Soup lattice_sphere(int r2) {
 
 // ---- Invariants of a finished mesh ------------------------------------------------
 
-using geometry::cross;
-using geometry::dot;
-using geometry::norm;
-using geometry::sub;
-
-void expect_meshed(const PLC& plc, const MeshResult& r) {
-  ASSERT_TRUE(r.conforming);
-  const TetMesh& m = r.mesh;
-  ASSERT_FALSE(m.tets.empty());
-  // Sizes: the diagonal of the input's box, and the largest coordinate, which
-  // bounds how far a rounded point may be from a plane or a line.
-  Point3 lo = plc.vertices[0], hi = plc.vertices[0];
-  double largest = 0;
-  for (const Point3& p : plc.vertices)
-    for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], p[i]);
-      hi[i] = std::max(hi[i], p[i]);
-      largest = std::max(largest, std::fabs(p[i]));
-    }
-  const double diag = norm(sub(hi, lo));
-  // A point the mesher inserts is rounded to doubles: near coordinates of
-  // 1e8, by up to 1.5e-8, so a Steiner point on a slanted facet or edge lies
-  // off it by that much, and the areas and the volume move by that much
-  // times the lengths and areas involved. `ulp` is that rounding (one unit in
-  // the last place of the largest coordinate); for inputs of unit size near
-  // the origin it is far below the 1e-9 relative tolerances.
-  const double ulp = 2.220446049250313e-16 * largest;
-  const double tol = 1e-12 * diag + 16 * ulp;
-  double surface = 0;
-  std::vector<double> facet_area(plc.facets.size(), 0), perimeter(plc.facets.size(), 0);
-  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
-    Point3 area{{0, 0, 0}};
-    for (const auto& loop : plc.facets[f].loops)
-      for (std::size_t i = 0; i < loop.size(); ++i) {
-        const Point3 &p = plc.vertices[loop[i]], &q = plc.vertices[loop[(i + 1) % loop.size()]];
-        const Point3 c = cross(sub(p, plc.vertices[0]), sub(q, plc.vertices[0]));
-        for (int k = 0; k < 3; ++k) area[k] += c[k] / 2;
-        perimeter[f] += norm(sub(q, p));
-      }
-    facet_area[f] = norm(area);
-    surface += facet_area[f];
-  }
-
-  // Every tet positively oriented; together the input volume.
-  double volume = 0;
-  std::size_t flat = 0;
-  for (const auto& t : m.tets) {
-    const Point3& a = m.vertices[t[0]];
-    const double o = dot(sub(m.vertices[t[1]], a), cross(sub(m.vertices[t[2]], a), sub(m.vertices[t[3]], a)));
-    flat += !(o > 0);
-    volume += o / 6;
-  }
-  EXPECT_EQ(flat, 0u) << "tets not positively oriented";
-  const double v_in = plc_volume(plc);
-  EXPECT_NEAR(volume, v_in, 1e-9 * std::fabs(v_in) + ulp * surface) << "mesh volume vs input volume";
-
-  // Input vertices first, at their exact coordinates.
-  ASSERT_GE(m.vertices.size(), plc.vertices.size());
-  for (std::size_t i = 0; i < plc.vertices.size(); ++i) ASSERT_EQ(m.vertices[i], plc.vertices[i]) << "vertex " << i;
-
-  // Boundary triangles: each in an input facet, outward like it, in its
-  // plane, and together covering its area.
-  ASSERT_EQ(m.boundary.size(), m.boundary_facet.size());
-  std::vector<double> covered(plc.facets.size(), 0);
-  std::size_t off_plane = 0, unlabelled = 0, inward = 0;
-  for (std::size_t i = 0; i < m.boundary.size(); ++i) {
-    const int f = m.boundary_facet[i];
-    if (f < 0 || f >= int(plc.facets.size())) {
-      ++unlabelled;
-      continue;
-    }
-    const auto& t = m.boundary[i];
-    const Point3 n = cross(sub(m.vertices[t[1]], m.vertices[t[0]]), sub(m.vertices[t[2]], m.vertices[t[0]]));
-    covered[f] += norm(n) / 2;
-    const Point3& fn = plc.facets[f].normal;
-    inward += !(dot(n, fn) > 0);
-    const Point3& o = plc.vertices[plc.facets[f].loops[0][0]];
-    for (int k = 0; k < 3; ++k) off_plane += std::fabs(dot(sub(m.vertices[t[k]], o), fn)) / norm(fn) > tol;
-  }
-  EXPECT_EQ(unlabelled, 0u) << "boundary triangles in no input facet";
-  EXPECT_EQ(inward, 0u) << "boundary triangles facing inwards";
-  EXPECT_EQ(off_plane, 0u) << "boundary vertices off their facet's plane by more than " << tol;
-  for (std::size_t f = 0; f < plc.facets.size(); ++f)
-    EXPECT_NEAR(covered[f], facet_area[f], 1e-9 * facet_area[f] + ulp * perimeter[f])
-        << "facet " << f << " is not covered exactly";
-
-  // Input edges: chains of mesh edges through the mesh vertices on them.
-  std::set<std::pair<int, int>> edges;
-  for (const auto& t : m.tets)
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) edges.insert(std::minmax(t[i], t[j]));
-  std::size_t broken = 0;
-  for (const PlcEdge& e : plc.edges) {
-    const Point3 &a = plc.vertices[e.a], ab = sub(plc.vertices[e.b], a);
-    const double len = norm(ab);
-    std::vector<std::pair<double, int>> on;
-    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      const Point3 av = sub(m.vertices[v], a);
-      const double s = dot(av, ab) / (len * len);
-      if (s < -1e-9 || s > 1 + 1e-9) continue;
-      if (norm(cross(av, ab)) / len <= tol) on.push_back({s, int(v)});
-    }
-    std::sort(on.begin(), on.end());
-    bool ok = on.size() >= 2 && on.front().second == e.a && on.back().second == e.b;
-    for (std::size_t i = 0; ok && i + 1 < on.size(); ++i)
-      ok = edges.count(std::minmax(on[i].second, on[i + 1].second)) > 0;
-    if (!ok) {
-      ++broken;
-      ADD_FAILURE() << "input edge " << e.a << "-" << e.b << " is not a chain of mesh edges";
-      if (broken >= 5) break;
-    }
-  }
-
-  std::size_t violations = 0;
-  for (TetClass c : r.tet_class) violations += c == TetClass::violation;
-  EXPECT_EQ(violations, r.violations);
+/// The shared invariants (mesh_invariants.h), whose tolerances allow for the
+/// rounding of inserted points at large coordinates.
+void expect_meshed(const std::string& name, const CheckResult& in, const MeshResult& r) {
+  invariants::expect_invariants(name, {in.plc, in.analysis}, r);
 }
 
 // ---- Running a case --------------------------------------------------------------
@@ -410,7 +299,7 @@ void run(const Case& c) {
                 r.stop_message.empty() ? "" : " - ", r.stop_message.c_str());
     ASSERT_FALSE(late) << c.name << " did not return within " << kDeadlineSeconds << " s";
     if (r.stopped.empty()) {
-      expect_meshed(in.plc, r);
+      expect_meshed(c.name, in, r);
     } else {
       EXPECT_EQ(c.expect, Expect::mesh_or_limit) << c.name << " should mesh, but stopped: " << r.stopped;
       EXPECT_EQ(r.stopped, "limit");
