@@ -65,10 +65,12 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   }
   j.end_array();
   // Every violation (skinny or sliver tet not near a small input angle), up
-  // to 1000 of them, so that they can be looked at and counted by others.
+  // to kListedViolations of them (all are counted in "violations"), so that
+  // they can be looked at and counted by others.
+  constexpr std::size_t kListedViolations = 1000;
   j.key("violation_tets").begin_array();
   std::size_t listed = 0;
-  for (std::size_t i = 0; i < r.tet_class.size() && listed < 1000; ++i) {
+  for (std::size_t i = 0; i < r.tet_class.size() && listed < kListedViolations; ++i) {
     if (r.tet_class[i] != TetClass::violation) continue;
     ++listed;
     const auto& t = r.mesh.tets[i];

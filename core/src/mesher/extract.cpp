@@ -232,7 +232,10 @@ MeshResult Mesher::extract() {
       if (in < 0) done = false;
       by_ray[c] = static_cast<char>(in == 1);
     }
-    if (done) inside.swap(by_ray);
+    if (done)
+      inside.swap(by_ray);
+    else
+      ++caps_reached;  // kRayParityBudget: the flood fill's labels stay
   }
   // Which input facet each wall triangle lies in.
   std::unordered_map<Tri, int, TriHash> facet_of;

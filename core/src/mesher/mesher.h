@@ -122,7 +122,8 @@ class Mesher {
   std::size_t slivers_before_pump = 0, pumped_vertices = 0;
   /// How many points each rule inserted, by rule_number (1..7); [0]: INITIALIZE.
   std::array<std::size_t, kRules> rule_count{};
-  /// How often a loop cap (Caps, PUMP's caps in pump.cpp) was reached.
+  /// How often a loop cap was reached: Caps, Pump::kLabelRounds,
+  /// Pump::kCriticalSteps, and the ray-parity budget of extract.cpp.
   std::size_t caps_reached = 0;
 
   // ---- what PUMP and the tests read ----
