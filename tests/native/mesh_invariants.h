@@ -18,6 +18,7 @@
 #include <string>
 
 #include "mesher/mesher.h"
+#include "test_support.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/input.h"
 #include "wqmesh/mesher.h"
@@ -36,10 +37,7 @@ struct Input {
 };
 
 inline Input load(const std::string& path, double box_margin = 0.5) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  const std::string bytes = s.str();
+  const std::string bytes = testing::read_file(path);
   AnalysisOptions ao;
   ao.box_margin = box_margin;
   const CheckResult r = check_polyhedron(bytes.data(), bytes.size(), {}, ao);

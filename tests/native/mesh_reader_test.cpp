@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "test_support.h"
 #include "wqmesh/mesh_reader.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/output.h"
@@ -20,19 +21,7 @@
 namespace wqmesh {
 namespace {
 
-/// Two positively oriented tets sharing a face, with coordinates that need 17
-/// significant digits, and their 6 boundary triangles (one of an unknown facet).
-TetMesh two_tets() {
-  TetMesh m;
-  m.vertices = {{{0, 0, 0}}, {{1.0 / 3.0, 0, 0}}, {{0, 0.1 + 0.2, 1e-300}}, {{-2.5e17, 0, 1}}, {{1, 1, 1.0 / 7.0}}};
-  m.tets = {{{0, 1, 2, 3}}, {{1, 2, 3, 4}}};
-  for (auto& t : m.tets)
-    if (tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]).volume < 0)
-      std::swap(t[0], t[1]);
-  m.boundary = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 1, 4}}};
-  m.boundary_facet = {0, 1, 2, 3, -1, 5};
-  return m;
-}
+using testing::two_tets;
 
 void expect_same_tets(const TetMesh& a, const TetMesh& b) {
   ASSERT_EQ(a.vertices.size(), b.vertices.size());

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
@@ -38,13 +39,6 @@ std::vector<fs::path> models_in(const std::string& dir) {
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// The file names of the last `n` rows of the table in SOURCES.md: the models
@@ -138,7 +132,7 @@ void fuzz_folder(const std::string& dir) {
   if (files.empty()) GTEST_SKIP() << "no models in " << dir;
   std::mt19937 rng(20051);
   for (const auto& path : files) {
-    const std::string bytes = slurp(path);
+    const std::string bytes = testing::read_file(path.string());
     const std::string name = path.filename().string();
     // Prefixes: all of them for small files, about 300 for large ones.
     const std::size_t step = std::max<std::size_t>(1, bytes.size() / 300);

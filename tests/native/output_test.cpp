@@ -17,27 +17,14 @@
 #include <string>
 #include <vector>
 
+#include "test_support.h"
 #include "wqmesh/output.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh {
 namespace {
 
-/// Two positively oriented tets sharing the face 1 2 3, with coordinates that
-/// need 17 significant digits, and their 6 boundary triangles (one of them in
-/// an unknown facet, -1).
-TetMesh two_tets() {
-  TetMesh m;
-  m.vertices = {{{0, 0, 0}}, {{1.0 / 3.0, 0, 0}}, {{0, 0.1 + 0.2, 1e-300}}, {{-2.5e17, 0, 1}}, {{1, 1, 1.0 / 7.0}}};
-  m.tets = {{{0, 1, 2, 3}}, {{1, 2, 3, 4}}};
-  for (auto& t : m.tets) {
-    const TetQuality q = tet_quality(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
-    if (q.volume < 0) std::swap(t[0], t[1]);
-  }
-  m.boundary = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 1, 4}}};
-  m.boundary_facet = {0, 1, 2, 3, -1, 5};
-  return m;
-}
+using testing::two_tets;
 
 /// Whitespace-separated tokens of a text.
 std::vector<std::string> tokens(const std::string& text) {
@@ -156,13 +143,6 @@ TEST(Output, TetgenStreamsRoundTrip) {
   EXPECT_TRUE(f.done());
 }
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(Output, TetgenFilesMatchStreams) {
   namespace fs = std::filesystem;
   const TetMesh m = two_tets();
@@ -174,9 +154,9 @@ TEST(Output, TetgenFilesMatchStreams) {
   write_tetgen(base, m);
   std::ostringstream node, ele, face;
   write_tetgen(node, ele, face, m);
-  EXPECT_EQ(slurp(base + ".node"), node.str());
-  EXPECT_EQ(slurp(base + ".ele"), ele.str());
-  EXPECT_EQ(slurp(base + ".face"), face.str());
+  EXPECT_EQ(testing::read_file(base + ".node"), node.str());
+  EXPECT_EQ(testing::read_file(base + ".ele"), ele.str());
+  EXPECT_EQ(testing::read_file(base + ".face"), face.str());
   fs::remove_all(dir);
   EXPECT_THROW(write_tetgen((dir / "no" / "such" / "dir").string(), m), std::runtime_error);
 }

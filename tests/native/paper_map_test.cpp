@@ -10,14 +10,9 @@
 #include <string>
 #include <vector>
 
-namespace {
+#include "test_support.h"
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+namespace {
 
 struct Row {
   std::string paper, file, function;
@@ -49,12 +44,12 @@ std::vector<Row> table_rows(const std::string& text) {
 
 TEST(PaperMap, EveryRowNamesAFunctionOfItsFile) {
   const std::string root = WQMESH_SOURCE_DIR;
-  const std::string text = read_text(root + "/docs/paper-map.md");
+  const std::string text = wqmesh::testing::read_file(root + "/docs/paper-map.md");
   ASSERT_FALSE(text.empty()) << "docs/paper-map.md is missing";
   const std::vector<Row> rows = table_rows(text);
   ASSERT_GE(rows.size(), 20u);
   for (const Row& r : rows) {
-    const std::string source = read_text(root + "/" + r.file);
+    const std::string source = wqmesh::testing::read_file(root + "/" + r.file);
     ASSERT_FALSE(source.empty()) << r.file << " (row \"" << r.paper << "\") is missing or empty";
     // "Class::name" is defined as "Class::name(" in its .cpp; a free function
     // or a header's inline one as "name(".
@@ -64,7 +59,8 @@ TEST(PaperMap, EveryRowNamesAFunctionOfItsFile) {
 }
 
 TEST(PaperMap, EveryProcedureAndRuleOfSection4HasARow) {
-  const std::vector<Row> rows = table_rows(read_text(std::string(WQMESH_SOURCE_DIR) + "/docs/paper-map.md"));
+  const std::vector<Row> rows =
+      table_rows(wqmesh::testing::read_file(std::string(WQMESH_SOURCE_DIR) + "/docs/paper-map.md"));
   const std::vector<std::string> names = {"WQMESH", "INITIALIZE", "CONFORM",          "REFINE", "PUMP",   "SPLITE",
                                           "SPLITF", "ENCROACH",   "protecting balls", "Rule 1", "Rule 2", "Rule 3",
                                           "Rule 4", "Rule 5",     "Rule 6",           "Rule 7"};
@@ -77,7 +73,7 @@ TEST(PaperMap, EveryProcedureAndRuleOfSection4HasARow) {
 
 TEST(PaperMap, RulesAreNamedInTheRuleEnum) {
   // Each rule's enumerator starts with its number: rule1_..., ..., rule7_....
-  const std::string rules = read_text(std::string(WQMESH_SOURCE_DIR) + "/core/src/mesher/rules.h");
+  const std::string rules = wqmesh::testing::read_file(std::string(WQMESH_SOURCE_DIR) + "/core/src/mesher/rules.h");
   ASSERT_FALSE(rules.empty());
   for (int n = 1; n <= 7; ++n) {
     const std::string enumerator = "rule" + std::to_string(n) + "_";
