@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "exact.h"
+#include "geometry.h"
 #include "scaling.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/error.h"
@@ -24,7 +25,7 @@
 namespace wqmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using geometry::kPi;
 /// The analysis' budget of edge-edge plus edge-facet angles (README, Limits):
 /// 4e6 entries make a JSON report of about 330 MB, under what a JavaScript
 /// string holds (2^29 characters in V8).
@@ -32,17 +33,10 @@ constexpr unsigned long long kMaxAngles = 4'000'000;
 
 // ---- double-precision vectors ------------------------------------------------
 using V = Point3;
-V sub(const V& a, const V& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
-double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-}
-double norm(const V& a) { return std::sqrt(dot(a, a)); }
-V scale(const V& a, double s) { return {{a[0] * s, a[1] * s, a[2] * s}}; }
-V normalized(const V& a) {
-  const double n = norm(a);
-  return n > 0 ? scale(a, 1 / n) : a;
-}
+using geometry::cross;
+using geometry::dot;
+using geometry::norm;
+using geometry::sub;
 /// The angle between two vectors, in degrees, in [0, 180].
 double angle_degrees(const V& a, const V& b) {
   return std::atan2(norm(cross(a, b)), dot(a, b)) * (180 / kPi);
@@ -155,7 +149,7 @@ class Analyzer {
       const V c = cross(sub(P(outer[m]), o), sub(P(outer[m + 1]), o));
       for (int q = 0; q < 3; ++q) newell[q] += c[q];
     }
-    fr.unit = normalized(newell);
+    fr.unit = geometry::unit(newell);
 
     // The triple: outer[0], the loop vertex farthest from it, and the loop
     // vertex farthest from the line through those two (well conditioned).
@@ -329,7 +323,7 @@ class Analyzer {
     const V w = sub(P(v), P(u));
     const V& n = frames_[f].unit;
     const double wn = dot(w, n);
-    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(w, scale(n, wn)))) * (180 / kPi);
+    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
     const V da = sub(P(a), P(u)), db = sub(P(b), P(u));
     const double ea = angle_degrees(w, da), eb = angle_degrees(w, db);
     const bool inside = dot(cross(db, w), n) >= 0 && dot(cross(w, da), n) >= 0;
@@ -363,7 +357,7 @@ class Analyzer {
     const V wd = sub(P(v), P(u));
     const V& n = frames_[f].unit;
     const double wn = dot(wd, n);
-    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(wd, scale(n, wn)))) * (180 / kPi);
+    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(wd, geometry::mul(n, wn)))) * (180 / kPi);
     if (perpendicular) return EdgeFacetAngle{u, -1, f, plane_angle, false};
     auto side = [&](int from, int to, bool w_first) {
       return exact::sign([&](auto z) {
@@ -440,7 +434,7 @@ class Analyzer {
     const V& n = frames_[f].unit;
     const double wn = dot(w, n);
     const double plane_angle =
-        std::atan2(std::fabs(wn), norm(sub(w, scale(n, wn)))) * (180 / kPi);
+        std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
     double best = 180;
     for (const auto& loop : plc_.facets[f].loops) {
       const std::size_t m = loop.size();
@@ -526,8 +520,8 @@ class Analyzer {
       const int wedge_sign = exact::sign([&, x1 = x1, y1 = y1, x2 = x2, y2 = y2](auto z) {
         return dotn(tangent(f1, x1, y1, z), tangent(f2, x2, y2, z));
       });
-      const V t1 = cross(frames_[f1].unit, normalized(sub(P(y1), P(x1))));
-      const V t2 = cross(frames_[f2].unit, normalized(sub(P(y2), P(x2))));
+      const V t1 = cross(frames_[f1].unit, geometry::unit(sub(P(y1), P(x1))));
+      const V t2 = cross(frames_[f2].unit, geometry::unit(sub(P(y2), P(x2))));
       const double wedge = angle_degrees(t1, t2);
       const bool convex = convex_sign < 0;
       d.internal_degrees = convex ? wedge : 360 - wedge;
