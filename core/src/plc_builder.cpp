@@ -40,11 +40,7 @@ struct UnionFind {
   }
 };
 
-std::string coords(const Point3& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.17g, %.17g, %.17g)", p[0], p[1], p[2]);
-  return buf;
-}
+using validation::coords;
 
 /// A half-edge of the triangulated surface: triangle t, its side k going from
 /// corner k to corner k+1.

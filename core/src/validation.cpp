@@ -13,16 +13,17 @@
 #include "exact.h"
 
 namespace wqmesh::validation {
-namespace {
-
-using cgal::K;
-using P2 = K::Point_2;
 
 std::string coords(const Point3& p) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "(%.17g, %.17g, %.17g)", p[0], p[1], p[2]);
   return buf;
 }
+
+namespace {
+
+using cgal::K;
+using P2 = K::Point_2;
 
 /// v / |v| for a finite v with a component other than 0; divided by its
 /// largest component first so that squaring neither overflows nor underflows.

@@ -72,4 +72,7 @@ void check_self_intersections(const std::vector<Point3>& pts,
                               const std::vector<std::array<int, 3>>& tris,
                               const std::function<std::string(int)>& describe);
 
+/// "(x, y, z)" with 17 significant digits: a point as error messages name it.
+std::string coords(const Point3& p);
+
 }  // namespace wqmesh::validation
