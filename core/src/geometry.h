@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "wqmesh/types.h"
