@@ -337,7 +337,8 @@ export interface MeshSyncControl {
   /**
    * Called after a bounded amount of work (every 256 insertions or pump
    * steps, and at each phase change); returning false cancels the run, which
-   * then returns with `stats.stopped: "cancelled"`.
+   * then returns at once with `stats.stopped: "cancelled"` and no mesh (its
+   * partial mesh is not extracted).
    */
   onProgress?: (progress: Progress) => boolean | void;
 }
@@ -399,6 +400,11 @@ export interface MeshStats {
   options: { rho0: number; theta_deg: number; pump: boolean; box_margin: number; max_vertices: number; max_size: number };
   /** Points inserted by each rule: [0] INITIALIZE, [i] rule i (1..7). */
   rule_points: number[];
+  /** How often a named loop cap or work budget of the mesher was reached
+   * (rule 3 and rule 7 passes, retries of deferred splits, PUMP's label
+   * rounds and critical steps, the ray-parity budget of a stopped run's
+   * extraction): 0 on every model measured so far. */
+  caps_reached: number;
   /** Time and insertions of each phase. */
   phases: { name: string; time_s: number; points_inserted: number }[];
   /** The protecting balls (also as arrays in {@link MeshResult.protectingBalls}). */

@@ -110,7 +110,8 @@ struct MeshResult {
   std::vector<int> input_vertex;
   std::vector<ProtectingBall> protecting_balls;
   /// "" when done, "limit" (max_vertices reached), "cancelled" (the progress
-  /// callback returned false) or "stalled" (a step went past
+  /// callback returned false; the run then returns at once and holds no mesh:
+  /// its partial mesh is not extracted) or "stalled" (a step went past
   /// MeshOptions::stall_work units of work: the watchdog).
   std::string stopped;
   /// Why the run stopped, in words, when it did (for "limit": where the vertex

@@ -125,12 +125,23 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     run("pump", [&] { m.pump(); });
   }
   MeshResult r;
-  const auto t0 = clock::now();
-  r = m.extract();
-  PhaseStats s;
-  s.name = "extract";
-  s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
-  phases.push_back(s);
+  if (m.stop_reason() == "cancelled") {
+    // Beyond the paper (issue 10, stops that reach every step): a cancelled
+    // run returns at once, without extracting its partial mesh (extraction
+    // walks the whole triangulation: about a second at 300,000 tets), so
+    // that a cancel takes effect within a bounded amount of work.
+    r.stopped = m.stop_reason();
+    r.stop_message = "cancelled by the caller at " + std::to_string(m.vertices().size()) +
+                     " vertices; no mesh was extracted";
+    r.protecting_balls = m.protecting_balls();
+  } else {
+    const auto t0 = clock::now();
+    r = m.extract();
+    PhaseStats s;
+    s.name = "extract";
+    s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
+    phases.push_back(s);
+  }
   r.phases = phases;
   if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
   if (r.stopped == "limit" && r.stop_message.empty()) {
