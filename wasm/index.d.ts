@@ -96,7 +96,10 @@ export interface MergeReport {
   faces_flipped: number;
 }
 
-/** Sizes of the piecewise linear complex (PLC) built from the input. */
+/**
+ * Sizes of the piecewise linear complex (PLC) built from the input, and the
+ * coordinates of its sharp elements (so that a reader can draw them).
+ */
 export interface PlcCounts {
   /** Input vertices. */
   vertices: number;
@@ -106,6 +109,16 @@ export interface PlcCounts {
   facets: number;
   /** Holes in facets, over all facets. */
   holes: number;
+  /**
+   * The coordinates [x, y, z] of each sharp vertex (paper, section 2), in the
+   * order of `analysis.sharp_vertices`.
+   */
+  sharp_vertex_points: [number, number, number][];
+  /**
+   * The two endpoints of each sharp edge (its PLC vertices a then b), in the
+   * order of `analysis.sharp_edges`.
+   */
+  sharp_edge_points: [[number, number, number], [number, number, number]][];
 }
 
 /** An axis-aligned box. */

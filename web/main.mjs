@@ -209,7 +209,8 @@ async function loadInput(name, bytes, example, preError = null) {
   }
   if (seq !== page.inputSeq) return;
   page.report = report;
-  const surface = await call('surface', { bytes: bytes.slice(), error: report.valid ? null : report.error.message });
+  const sharp = report.valid ? { vertices: report.plc.sharp_vertex_points, edges: report.plc.sharp_edge_points } : null;
+  const surface = await call('surface', { bytes: bytes.slice(), error: report.valid ? null : report.error.message, sharp });
   if (seq !== page.inputSeq) return;
   page.surface = surface;
   viewer.frame(surface.size);
@@ -251,12 +252,7 @@ function showAnalysis(r, surface) {
   ul.lastChild.append(`, sharp vertices: ${a.counts.sharp_vertices}`);
   li(`acute angles: ${a.counts.acute_edge_edge_angles} edge-edge, ${a.counts.acute_edge_facet_angles} edge-facet`);
   for (const w of r.warnings) li(`repaired: ${w}`);
-  if (surface?.marksSkipped) li(`(${surface.triangles} triangles: the sharp elements are not marked in the view)`);
-  if (surface?.counts && (surface.counts.sharpEdges !== a.counts.sharp_edges ||
-      surface.counts.sharpVertices !== a.counts.sharp_vertices)) {
-    li(`(the marks in the view are the page's own reading: ${surface.counts.sharpEdges} sharp edges, ` +
-       `${surface.counts.sharpVertices} sharp vertices)`);
-  }
+  if (surface?.marksSkipped) li(`(${surface.triangles} triangles: the input edges are not drawn in the view)`);
 }
 
 function showError(err, surface) {

@@ -1,16 +1,11 @@
 // wqmesh page: a lenient reader of OFF and STL files for the preview of the
-// input surface, and the page's own reading of its features (input edges,
-// sharp edges, sharp vertices) to mark them on the preview.
+// input surface, and its input edges (to draw them on the preview).
 //
-// Beyond the paper and the core: the core's check report (the package's
-// check()) is what decides validity and what the page prints as numbers; it
-// names sharp elements by PLC indices but carries no coordinates, so the
-// page finds the same elements again on the surface it read, with the
-// definitions of the paper's section 2 ("an edge is sharp if the internal or
-// external dihedral angle at it is acute; a vertex u is sharp if an edge-edge
-// or an edge-facet angle at u is acute, or u is an endpoint of a sharp
-// edge"), in floating point with a tolerance for coplanarity. The browser
-// tests compare its counts with the report's.
+// The core's check report (the package's check()) is what decides validity,
+// what the page prints as numbers, and which elements are sharp: the page
+// draws the sharp edges and vertices at the report's coordinates
+// (plc.sharp_vertex_points, plc.sharp_edge_points) and has no reading of
+// sharpness of its own.
 // Pure functions: no DOM, usable in workers and in Node.
 // SPDX-License-Identifier: GPL-3.0-or-later
 
@@ -151,16 +146,13 @@ export const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 export const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const norm = (a) => Math.hypot(a[0], a[1], a[2]);
 const unit = (a) => { const l = norm(a) || 1; return [a[0] / l, a[1] / l, a[2] / l]; };
-const angle = (a, b) => Math.acos(Math.max(-1, Math.min(1, dot(unit(a), unit(b))))) * 180 / Math.PI;
 
 /**
- * The features of a surface, as the page reads them (see the file comment):
- * `edges` (pairs of merged point indices; the input edges: faces on both
- * sides not coplanar, or an open or non-manifold edge), `sharpEdges` (indices
- * into `edges`), `sharpVertices` (merged point indices), `pos` (x, y, z per
- * merged point), and the smallest angle seen, `phiMin` (degrees).
+ * The input edges of a surface, for the wireframe of the preview: `edges`
+ * (pairs of merged point indices; edges whose two faces are not coplanar, or
+ * open or non-manifold edges) and `pos` (x, y, z per merged point).
  */
-export function features(surface) {
+export function inputEdges(surface) {
   const { tri, triFace, faceNormal } = triangulate(surface);
   const P = surface.points;
   // Merge identical points, as the core does.
@@ -176,19 +168,13 @@ export function features(surface) {
   const nt = tri.length / 3;
   const T = new Int32Array(tri.length);
   for (let i = 0; i < tri.length; ++i) T[i] = id[tri[i]];
-  // Orientation: outward when the signed volume is positive (a guess for
-  // inconsistent input, which the core repairs).
-  let vol = 0;
   const normal = [];
   for (let t = 0; t < nt; ++t) {
     const a = pos[T[3 * t]], b = pos[T[3 * t + 1]], c = pos[T[3 * t + 2]];
-    vol += dot(a, cross(b, c));
     const f = 3 * triFace[t];
     const nf = [faceNormal[f], faceNormal[f + 1], faceNormal[f + 2]];
     normal.push(norm(nf) > 0 ? nf : cross(sub(b, a), sub(c, a)));
   }
-  const sign = vol < 0 ? -1 : 1;
-  for (const nrm of normal) for (let k = 0; k < 3; ++k) nrm[k] *= sign;
   // Edge -> triangles.
   const edgeTris = new Map();
   for (let t = 0; t < nt; ++t) {
@@ -204,81 +190,14 @@ export function features(surface) {
   // Facets: triangles joined across edges whose two triangles are coplanar.
   const parent = Int32Array.from({ length: nt }, (_, i) => i);
   const find = (x) => { while (parent[x] !== x) x = parent[x] = parent[parent[x]]; return x; };
-  const coplanar = (t1, t2) => {
-    const n1 = unit(normal[t1]), n2 = unit(normal[t2]);
-    return dot(n1, n2) > 1 - 1e-10;
-  };
+  const coplanar = (t1, t2) => dot(unit(normal[t1]), unit(normal[t2])) > 1 - 1e-10;
   for (const l of edgeTris.values()) if (l.length === 2 && coplanar(l[0], l[1])) parent[find(l[0])] = find(l[1]);
-  const edges = [], sharpEdges = [];
-  const vertexEdges = pos.map(() => []);
-  let phiMin = 180;
+  const edges = [];
   for (const [k, l] of edgeTris) {
-    const a = Math.floor(k / 4294967296), b = k % 4294967296;
-    let isEdge = l.length !== 2 || find(l[0]) !== find(l[1]);
-    let sharp = false;
-    if (l.length === 2 && isEdge) {
-      const [t1, t2] = l;
-      const n1 = unit(normal[t1]), n2 = unit(normal[t2]);
-      // Into face 2, away from the edge: n2 x (edge as face 2 runs it).
-      let from = a, to = b;
-      for (let j = 0; j < 3; ++j) if (T[3 * t2 + j] === b && T[3 * t2 + (j + 1) % 3] === a) { from = b; to = a; }
-      const bend = dot(cross(n2, sub(pos[to], pos[from])), n1) * sign;
-      const turn = angle(n1, n2);
-      const internal = bend <= 0 ? 180 - turn : 180 + turn;
-      if (Math.abs(internal - 180) < 1e-7) isEdge = false;
-      sharp = internal < 90 - 1e-6 || internal > 270 + 1e-6;  // right angles stay right
-      phiMin = Math.min(phiMin, internal, 360 - internal);
-    }
-    if (!isEdge) continue;
-    const e = edges.length;
-    edges.push([a, b]);
-    vertexEdges[a].push(e);
-    vertexEdges[b].push(e);
-    if (sharp) sharpEdges.push(e);
+    if (l.length === 2 && find(l[0]) === find(l[1])) continue;
+    edges.push([Math.floor(k / 4294967296), k % 4294967296]);
   }
-  const sharp = new Uint8Array(pos.length);
-  for (const e of sharpEdges) sharp[edges[e][0]] = sharp[edges[e][1]] = 1;
-  // Triangles at each vertex, with their facet, for the edge-facet angles.
-  const vertexTris = pos.map(() => []);
-  for (let t = 0; t < nt; ++t) for (let j = 0; j < 3; ++j) vertexTris[T[3 * t + j]].push(t);
-  for (let u = 0; u < pos.length; ++u) {
-    const E = vertexEdges[u];
-    const dir = E.map((e) => sub(pos[edges[e][0] === u ? edges[e][1] : edges[e][0]], pos[u]));
-    for (let i = 0; i < E.length; ++i) {
-      for (let j = i + 1; j < E.length; ++j) {
-        const g = angle(dir[i], dir[j]);
-        phiMin = Math.min(phiMin, g);
-        if (g < 90 - 1e-6) sharp[u] = 1;
-      }
-      // Edge-facet: min over the corners at u of the facets not holding the edge.
-      const far = edges[E[i]][0] === u ? edges[E[i]][1] : edges[E[i]][0];
-      const best = new Map(), excluded = new Set();
-      for (const t of vertexTris[u]) {
-        const f = find(t);
-        const vs = [0, 1, 2].map((j) => T[3 * t + j]);
-        const n = unit(normal[t]);
-        const d = dir[i];
-        // F must neither hold the edge nor be coplanar with it (section 2).
-        if (vs.includes(far) || Math.abs(dot(unit(d), n)) < 1e-9) { excluded.add(f); continue; }
-        const [p, q] = vs.filter((v) => v !== u).map((v) => sub(pos[v], pos[u]));
-        const dp = sub(d, n.map((x) => x * dot(d, n)));
-        const s0 = dot(cross(p, q), n);
-        // Inside the corner's wedge, the smallest angle is the one to the
-        // plane; outside, the one to the nearer side of the corner.
-        const g = dot(cross(p, dp), n) * s0 >= 0 && dot(cross(dp, q), n) * s0 >= 0
-          ? angle(d, dp) : Math.min(angle(d, p), angle(d, q));
-        if (!best.has(f) || best.get(f) > g) best.set(f, g);
-      }
-      for (const [f, g] of best) {
-        if (excluded.has(f)) continue;
-        phiMin = Math.min(phiMin, g);
-        if (g < 90 - 1e-6) sharp[u] = 1;
-      }
-    }
-  }
-  const sharpVertices = [];
-  for (let u = 0; u < pos.length; ++u) if (sharp[u] && vertexEdges[u].length > 0) sharpVertices.push(u);
-  return { pos, edges, sharpEdges, sharpVertices, phiMin, triangles: T };
+  return { pos, edges };
 }
 
 /**

@@ -1,14 +1,15 @@
 // wqmesh page: the view worker. Holds the mesh of the last run (its arrays
 // are transferred here, not copied), builds the face-to-tet table once, and
 // answers the page's requests, so that no long task runs on the main thread:
-//   surface  -> the input preview (triangles, input and sharp edges, sharp
-//               vertices, the faces/edge/points an error message names)
+//   surface  -> the input preview (triangles, input edges, the sharp edges
+//               and vertices at the check report's coordinates, the
+//               faces/edge/points an error message names)
 //   mesh     -> table built; bounding box, histogram, worst tets
 //   extract  -> the buffers of one picture (tetfaces.mjs: whole tets)
 //   tet      -> the numbers of one tet
 //   write    -> a file of the mesh, through the package's writers
 // SPDX-License-Identifier: GPL-3.0-or-later
-import { cross, dot, features, locate, readSurface, sub, triangulate } from './surface.mjs';
+import { cross, dot, inputEdges, locate, readSurface, sub, triangulate } from './surface.mjs';
 import { neighbours, extract, dihedralHistogram, worstTets, gridMesh, TET_FACES } from './tetfaces.mjs';
 
 const MAX_MARKED_TRIANGLES = 200000;
@@ -28,7 +29,7 @@ function bbox(P) {
   return { lo, hi };
 }
 
-function surfaceMessage({ bytes, error }) {
+function surfaceMessage({ bytes, error, sharp }) {
   const s = readSurface(bytes);
   const { tri, triFace } = triangulate(s);
   const P = s.points;
@@ -37,23 +38,23 @@ function surfaceMessage({ bytes, error }) {
   const rel = (p, out, o) => { out[o] = p[0] - origin[0]; out[o + 1] = p[1] - origin[1]; out[o + 2] = p[2] - origin[2]; };
   const positions = new Float32Array(3 * tri.length);
   for (let i = 0; i < tri.length; ++i) rel([P[3 * tri[i]], P[3 * tri[i] + 1], P[3 * tri[i] + 2]], positions, 3 * i);
-  // The marks of sharp elements cost about 30 us per triangle: skipped for
-  // very large inputs, so that the preview (and this worker's queue) stays quick.
-  let F = null;
+  // The input edges take time per triangle: skipped for very large
+  // inputs, so that the preview (and this worker's queue) stays quick.
+  let E = null;
   const marks = tri.length / 3 <= MAX_MARKED_TRIANGLES;
   if (marks) {
-    try { F = features(s); } catch { F = null; }
+    try { E = inputEdges(s); } catch { E = null; }
   }
-  const lines = (list) => {
-    const out = new Float32Array(6 * list.length);
-    list.forEach(([a, b], i) => { rel(F.pos[a], out, 6 * i); rel(F.pos[b], out, 6 * i + 3); });
-    return out;
-  };
-  const sharpSet = new Set(F ? F.sharpEdges : []);
-  const featureLines = F ? lines(F.edges.filter((_, e) => !sharpSet.has(e))) : new Float32Array(0);
-  const sharpLines = F ? lines(F.sharpEdges.map((e) => F.edges[e])) : new Float32Array(0);
-  const sharpPoints = new Float32Array(3 * (F ? F.sharpVertices.length : 0));
-  if (F) F.sharpVertices.forEach((v, i) => rel(F.pos[v], sharpPoints, 3 * i));
+  const featureLines = new Float32Array(6 * (E ? E.edges.length : 0));
+  if (E) E.edges.forEach(([a, b], i) => { rel(E.pos[a], featureLines, 6 * i); rel(E.pos[b], featureLines, 6 * i + 3); });
+  // The sharp elements: the check report's coordinates (plc.sharp_edge_points,
+  // plc.sharp_vertex_points), drawn over the input edges.
+  const sharpEdgePoints = sharp ? sharp.edges : [];
+  const sharpVertexPoints = sharp ? sharp.vertices : [];
+  const sharpLines = new Float32Array(6 * sharpEdgePoints.length);
+  sharpEdgePoints.forEach(([p, q], i) => { rel(p, sharpLines, 6 * i); rel(q, sharpLines, 6 * i + 3); });
+  const sharpPoints = new Float32Array(3 * sharpVertexPoints.length);
+  sharpVertexPoints.forEach((p, i) => rel(p, sharpPoints, 3 * i));
   // What an error message names.
   let bad = null;
   if (error) {
@@ -75,7 +76,7 @@ function surfaceMessage({ bytes, error }) {
     value: {
       positions, featureLines, sharpLines, sharpPoints, bad, origin,
       size: Math.max(...box.hi.map((x, k) => x - box.lo[k])) || 1,
-      counts: F ? { edges: F.edges.length, sharpEdges: F.sharpEdges.length, sharpVertices: F.sharpVertices.length } : null,
+      counts: { edges: E ? E.edges.length : null, sharpEdges: sharpLines.length / 6, sharpVertices: sharpPoints.length / 3 },
       marksSkipped: !marks,
       triangles: tri.length / 3, faces: s.faces.length, points: P.length / 3,
     },

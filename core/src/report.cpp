@@ -45,7 +45,29 @@ void write_plc_counts(JsonWriter& j, const PLC& plc) {
   j.begin_object();
   j.field("vertices", plc.vertices.size()).field("edges", plc.edges.size());
   j.field("facets", plc.facets.size()).field("holes", holes);
-  j.end_object();
+}
+
+void write_point(JsonWriter& j, const Point3& p) {
+  j.begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
+}
+
+// The coordinates of the sharp elements (paper, section 2), so that a reader
+// (the web page) can mark them without a PLC of its own: "sharp_vertex_points"
+// in the order of analysis.sharp_vertices, "sharp_edge_points" (the two
+// endpoints, a then b) in the order of analysis.sharp_edges. Beyond the paper:
+// report output only.
+void write_sharp_points(JsonWriter& j, const PLC& plc, const Analysis& a) {
+  j.key("sharp_vertex_points").begin_array();
+  for (int u : a.sharp_vertices) write_point(j, plc.vertices[u]);
+  j.end_array();
+  j.key("sharp_edge_points").begin_array();
+  for (int e : a.sharp_edges) {
+    j.begin_array();
+    write_point(j, plc.vertices[plc.edges[e].a]);
+    write_point(j, plc.vertices[plc.edges[e].b]);
+    j.end_array();
+  }
+  j.end_array();
 }
 
 }  // namespace
@@ -67,6 +89,8 @@ std::string check_json(const CheckResult& r, bool pretty) {
     write_merge(j, r.merge);
     j.key("plc");
     write_plc_counts(j, r.plc);
+    write_sharp_points(j, r.plc, r.analysis);
+    j.end_object();
     j.key("analysis");
     write_analysis_json(j, r.analysis);
   }

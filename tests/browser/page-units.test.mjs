@@ -13,7 +13,7 @@ import { test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 import { RUN_PARAMS, defaultState, queryFromState, stateFromQuery } from '../../web/params.mjs';
-import { features, locate, readSurface } from '../../web/surface.mjs';
+import { inputEdges, locate, readSurface } from '../../web/surface.mjs';
 import { extract, gridMesh, neighbours, TET_FACES, worstTets, dihedralHistogram } from '../../web/tetfaces.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
@@ -30,17 +30,21 @@ test('URL state: round trip, defaults left out, bad values fall back to the defa
   assert.equal(bad.example, '');
 });
 
-test('sharp edges and vertices as the page reads them equal the core\'s report (examples/models)', async () => {
+test('the input edges the page draws are the core\'s PLC edges, and the report carries the sharp elements\' coordinates (examples/models)', async () => {
   const pkg = await import('../../wasm/index.mjs');
   await pkg.ready();
   for (const name of readdirSync(examples).filter((f) => f.endsWith('.off'))) {
     const bytes = readFileSync(join(examples, name));
     const r = pkg.checkSync(bytes);
-    const f = features(readSurface(bytes));
+    const f = inputEdges(readSurface(bytes));
     assert.equal(f.edges.length, r.plc.edges, `${name}: input edges`);
-    assert.equal(f.sharpEdges.length, r.analysis.counts.sharp_edges, `${name}: sharp edges`);
-    assert.equal(f.sharpVertices.length, r.analysis.counts.sharp_vertices, `${name}: sharp vertices`);
-    assert.ok(Math.abs(f.phiMin - r.analysis.phi_m_degrees) < 1e-6, `${name}: phi_m ${f.phiMin} vs ${r.analysis.phi_m_degrees}`);
+    // What the page draws for the sharp elements (web/view-worker.mjs).
+    assert.equal(r.plc.sharp_vertex_points.length, r.analysis.counts.sharp_vertices, `${name}: sharp vertex points`);
+    assert.equal(r.plc.sharp_edge_points.length, r.analysis.counts.sharp_edges, `${name}: sharp edge points`);
+    // Every sharp point is an input point of the file.
+    const P = readSurface(bytes).points;
+    const isInput = (p) => { for (let i = 0; i < P.length; i += 3) if (P[i] === p[0] && P[i + 1] === p[1] && P[i + 2] === p[2]) return true; return false; };
+    for (const p of [...r.plc.sharp_vertex_points, ...r.plc.sharp_edge_points.flat()]) assert.ok(isInput(p), `${name}: ${p} is not an input point`);
   }
 });
 

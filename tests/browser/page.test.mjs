@@ -149,14 +149,21 @@ test('file input: spike.off meshes and shows the package\'s numbers', { skip }, 
   const pumped = spike.weights.filter((w) => w > 0).length;
   assert.ok(spike.stats.protecting_balls.length > 0, 'spike.off has protecting balls');
   assert.deepEqual(overlay, [`balls ${spike.stats.protecting_balls.length}`, ...(pumped ? [`points ${pumped}`] : [])]);
-  // The analysis before meshing: the report's numbers, and the page's own
-  // marks agree with them on this model.
+  // The analysis before meshing: the report's numbers, and the marks drawn
+  // are exactly the report's sharp elements, at its coordinates.
   const report = pkg.checkSync(model('spike.off'));
   assert.equal(await page.textContent('[data-check=sharp_edges]'), String(report.analysis.counts.sharp_edges));
-  const counts = await page.evaluate(() => window.__wqmeshPage.surface.counts);
-  assert.equal(counts.sharpVertices, report.analysis.counts.sharp_vertices);
-  assert.equal(counts.sharpEdges, report.analysis.counts.sharp_edges);
-  assert.equal(counts.edges, report.plc.edges);
+  const drawn = await page.evaluate(() => {
+    const s = window.__wqmeshPage.surface;
+    return { counts: s.counts, origin: s.origin, lines: Array.from(s.sharpLines), points: Array.from(s.sharpPoints) };
+  });
+  assert.ok(report.analysis.counts.sharp_vertices > 0, 'spike.off has sharp vertices');
+  assert.equal(drawn.counts.sharpVertices, report.analysis.counts.sharp_vertices);
+  assert.equal(drawn.counts.sharpEdges, report.analysis.counts.sharp_edges);
+  assert.equal(drawn.counts.edges, report.plc.edges);
+  const near = (a, b, what) => assert.ok(Math.abs(a - b) <= 1e-5 * (1 + Math.abs(b)), `${what}: ${a} vs ${b}`);
+  report.plc.sharp_vertex_points.forEach((p, i) => p.forEach((x, k) => near(drawn.points[3 * i + k] + drawn.origin[k], x, `sharp vertex ${i}`)));
+  report.plc.sharp_edge_points.forEach((e, i) => e.flat().forEach((x, k) => near(drawn.lines[6 * i + k] + drawn.origin[k % 3], x, `sharp edge ${i}`)));
   // A file dropped anywhere on the page loads too.
   await page.evaluate((text) => {
     const dt = new DataTransfer();

@@ -31,8 +31,9 @@ struct CheckResult {
 CheckResult check_polyhedron(const char* data, std::size_t size, const InputLimits& limits = {},
                              const AnalysisOptions& options = {});
 
-/// The report as JSON: {"valid", "format", "warnings", "merge", "plc" (counts),
-/// "analysis"} or {"valid": false, "error": {"kind", "message"}}.
+/// The report as JSON: {"valid", "format", "warnings", "merge", "plc" (counts,
+/// and "sharp_vertex_points" / "sharp_edge_points": the coordinates of
+/// analysis.sharp_vertices / sharp_edges, in their order), "analysis"} or {"valid": false, "error": {"kind", "message"}}.
 std::string check_json(const CheckResult& result, bool pretty = true);
 
 }  // namespace wqmesh
