@@ -229,7 +229,7 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   return q;
 }
 
-std::vector<TetQuality> mesh_quality(const TetMesh& mesh) {
+std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going) {
   const bool weighted = !mesh.weights.empty();
   if (weighted && mesh.weights.size() != mesh.vertices.size())
     throw std::invalid_argument("mesh_quality: " + std::to_string(mesh.weights.size()) +
@@ -239,6 +239,7 @@ std::vector<TetQuality> mesh_quality(const TetMesh& mesh) {
   std::vector<TetQuality> out;
   out.reserve(mesh.tets.size());
   for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (keep_going && !keep_going()) break;
     const std::array<int, 4>& tet = mesh.tets[t];
     for (int v : tet)
       if (v < 0 || v >= n)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "wqmesh/types.h"
@@ -98,7 +99,10 @@ std::size_t histogram_bin(double angle_deg, std::size_t bins);
 /// Per-tet quality for every tet of `mesh` (weighted if mesh.weights is set).
 /// Throws std::invalid_argument if weights are set with a size other than the
 /// number of vertices, std::out_of_range on a bad vertex index.
-std::vector<TetQuality> mesh_quality(const TetMesh& mesh);
+/// `keep_going`, when given, is called once per tet before its quality is
+/// computed; once it returns false the computation stops, and the result
+/// holds the qualities of the tets before that one only (a caller's cancel).
+std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going = {});
 
 /// Statistics over per-tet qualities (those of mesh_quality(mesh)). A tet
 /// counts as inverted by the exact sign of its volume (tet_orientation on

@@ -200,18 +200,33 @@ constexpr long long kRayParityBudget = 400'000'000;
 
 }  // namespace
 
-MeshResult Mesher::extract() {
+MeshResult Mesher::extract(bool stoppable) {
   MeshResult r;
   r.stopped = stop_reason_;
   r.conforming = conforms();
   r.protecting_balls = balls_.all();
+  // Beyond the paper (issue 10, stops that reach every step): a stoppable
+  // extraction polls once per vertex, cell or tet it handles.
+  const auto must_stop = [&] { return stoppable && !poll(1, false); };
+  const auto stopped_result = [&] {
+    MeshResult s;
+    s.stopped = stop_reason_;
+    s.protecting_balls = balls_.all();
+    return s;
+  };
   if (nn_.size() != verts_.size()) {
-    nn_.resize(verts_.size());
-    for (std::size_t v = 0; v < verts_.size(); ++v) nn_[v] = nearest_neighbour(static_cast<int>(v));
+    std::vector<double> nn(verts_.size());
+    for (std::size_t v = 0; v < verts_.size(); ++v) {
+      if (must_stop()) return stopped_result();
+      nn[v] = nearest_neighbour(static_cast<int>(v));
+    }
+    nn_.swap(nn);
   }
   // In canonical order, so that the output is the same on every platform.
-  const RegularTriangulation::CellGraph g = canonical(tri_.cell_graph());
-  std::vector<char> inside = interior_labels(g);
+  const RegularTriangulation::CellGraph g = canonical(stoppable ? scan_cell_graph() : tri_.cell_graph());
+  if (stoppable && stopped()) return stopped_result();
+  std::vector<char> inside = interior_labels(g, stoppable);
+  if (stoppable && stopped()) return stopped_result();
   if (!r.conforming) {
     // Beyond the paper: the walls have holes, so the flood fill's labels
     // leak; label each cell by its centroid instead (RayParity), unless that
@@ -281,6 +296,7 @@ MeshResult Mesher::extract() {
     if (verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices) id(static_cast<int>(v));
   static const int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (std::size_t c = 0; c < g.cells.size(); ++c) {
+    if (must_stop()) return stopped_result();
     if (!inside[c]) continue;
     const Tet& t = g.cells[c];
     mesh.tets.push_back({{id(t[0]), id(t[1]), id(t[2]), id(t[3])}});
@@ -292,10 +308,12 @@ MeshResult Mesher::extract() {
       mesh.boundary_facet.push_back(it == facet_of.end() ? common_facet(f) : it->second);
     }
   }
-  r.quality = mesh_quality(mesh);
+  r.quality = stoppable ? mesh_quality(mesh, [&] { return !must_stop(); }) : mesh_quality(mesh);
+  if (r.quality.size() != mesh.tets.size()) return stopped_result();
   // Classes (see TetClass).
   r.tet_class.resize(mesh.tets.size(), TetClass::good);
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
+    if (must_stop()) return stopped_result();
     const TetQuality& q = r.quality[i];
     const bool skinny = q.radius_edge > opt_.rho0;
     const bool sliver = !skinny && q.min_dihedral_deg < opt_.theta_deg;

@@ -119,8 +119,9 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   run("refine", [&] { m.refine(); });
   std::size_t slivers_qmesh = 0;
   if (options.pump && !m.stopped()) {
-    // Count the inside slivers QMESH would leave, then PUMP.
-    MeshResult before = m.extract();
+    // Count the inside slivers QMESH would leave (a stoppable extraction:
+    // a cancel during it ends the run), then PUMP.
+    MeshResult before = m.extract(true);
     slivers_qmesh = before.slivers;
     run("pump", [&] { m.pump(); });
   }

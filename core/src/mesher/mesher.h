@@ -73,7 +73,11 @@ class Mesher {
   void conform();        ///< conform.cpp, rules 1-3
   void refine();         ///< refine.cpp, rules 4-7
   void pump();           ///< pump.cpp
-  MeshResult extract();  ///< extract.cpp: interior tets, classes, statistics
+  /// extract.cpp: interior tets, classes, statistics. `stoppable`: poll
+  /// while extracting (the count of QMESH's slivers before PUMP), so that a
+  /// cancel takes effect within a bounded amount of work; the result is then
+  /// empty, with `stopped` set, once the run must stop.
+  MeshResult extract(bool stoppable = false);
 
   bool stopped() const { return !stop_reason_.empty(); }
   void cancel() {
