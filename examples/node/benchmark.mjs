@@ -1,8 +1,13 @@
-// wqmesh: the benchmark (issue 4). Prints figures; it is not a test.
+// wqmesh: the benchmark (issues 4 and 14). Prints figures; it is not a test.
 // For every closed model of ../shared/models (broken ones, those that
 // `wqmesh check` rejects with exit code 2, are skipped) and examples/models,
 // runs each tool under a time limit per model:
-//   wqmesh         the native command line (build/native/bin/wqmesh mesh);
+//   wqmesh         the native command line (build/native/bin/wqmesh mesh),
+//                  with the improvement phase after PUMP (the default) and,
+//                  as "wqmesh no-improve", with --no-improve (the paper's
+//                  WQMESH output); a binary whose `wqmesh mesh --help` has no
+//                  --no-improve has no improvement phase: one row, and the
+//                  report says so;
 //   wqmesh-wasm    the wasm module under Node (examples/node/wasm_runner.mjs,
 //                  one process per run);
 //   Mesh_3         CGAL make_mesh_3 (tests/benchmark/mesh3_peer.cpp, built on
@@ -11,15 +16,24 @@
 //                  20% of wqmesh's;
 //   TetGen         Debian's /usr/bin/tetgen, -pq2.2/0 and -pq1.414/10.
 // Every mesh is then measured by the same code, `wqmesh measure`, and one
-// table is printed, followed by wqmesh's ratio to a plain Delaunay
-// triangulation of its vertices, the wasm/native time ratio, the Mesh_3
-// sizes, and a growth series (one model at several --max-size bounds).
-// Progress goes to stderr, the report (Markdown tables) to stdout.
+// table is printed, followed by issue 14's goals per model (met or not met,
+// with the figures), the improvement phase against WQMESH alone, wqmesh's
+// ratio to a plain Delaunay triangulation of its vertices, the wasm/native
+// time ratio, the Mesh_3 sizes, and a growth series (one model at several
+// --max-size bounds). Progress goes to stderr, the report (Markdown tables)
+// to stdout.
 //
 // Usage: node examples/node/benchmark.mjs [--timeout S] [--build DIR] [--wasm FILE]
 //          [--tools wqmesh,wasm,mesh3,tetgen] [--wasm-all] [--mesh3-steps K]
 //          [--bisect-timeout S] [--growth-model FILE] [--growth-sizes H,H,...]
-//          [--growth-timeout S] [--no-growth] [--growth-only] [--keep] [MODEL ...]
+//          [--growth-timeout S] [--no-growth] [--growth-only] [--keep]
+//          [--quick] [--baseline DIR] [MODEL ...]
+// --quick: only the models whose smallest local feature size (`wqmesh check`'s
+// analysis.lfs) is at least 1/200 of the input box's diagonal (the example
+// models and the small shared ones; a smaller feature makes a large mesh).
+// --baseline DIR: stats files DIR/<model file name>.json of an earlier run
+// (`wqmesh mesh --stats`, e.g. /work/baseline/<commit>/), whose tet counts are
+// printed beside the goals as the reference "today" of issue 14.
 // SPDX-License-Identifier: GPL-3.0-or-later
 import { spawnSync } from 'node:child_process';
 import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync }
@@ -41,12 +55,12 @@ const opt = {
   tools: ['wqmesh', 'wasm', 'mesh3', 'tetgen'], wasmAll: false, mesh3Steps: 12, bisectTimeout: 0,
   growthModel: join(root, 'examples', 'models', 'spike.off'),
   growthSizes: [0.1, 0.07, 0.05, 0.04, 0.03, 0.025, 0.021], growthTimeout: 1200, growth: true, table: true,
-  keep: false, maxVertices: 1000000, models: [],
+  keep: false, maxVertices: 1000000, models: [], quick: false, baseline: null,
 };
 const usage = 'usage: node examples/node/benchmark.mjs [--timeout S] [--build DIR] [--wasm FILE] ' +
   '[--tools wqmesh,wasm,mesh3,tetgen] [--wasm-all] [--mesh3-steps K] [--bisect-timeout S] ' +
   '[--growth-model FILE] [--growth-sizes H,H,...] [--growth-timeout S] [--no-growth] [--growth-only] ' +
-  '[--keep] [MODEL ...]';
+  '[--keep] [--quick] [--baseline DIR] [MODEL ...]';
 {
   const args = process.argv.slice(2);
   for (let i = 0; i < args.length; ++i) {
@@ -73,6 +87,8 @@ const usage = 'usage: node examples/node/benchmark.mjs [--timeout S] [--build DI
     else if (a === '--no-growth') opt.growth = false;
     else if (a === '--growth-only') opt.table = false;
     else if (a === '--keep') opt.keep = true;
+    else if (a === '--quick') opt.quick = true;
+    else if (a === '--baseline') opt.baseline = resolve(value());
     else if (a === '--help' || a === '-h') { console.log(usage); process.exit(0); }
     else if (a.startsWith('-')) die(`unknown option '${a}'\n${usage}`);
     else opt.models.push(resolve(a));
@@ -81,6 +97,7 @@ const usage = 'usage: node examples/node/benchmark.mjs [--timeout S] [--build DI
     if (!['wqmesh', 'wasm', 'mesh3', 'tetgen'].includes(t)) die(`unknown tool '${t}' (wqmesh, wasm, mesh3, tetgen)`);
   if (opt.growthSizes.some((h) => !(h > 0))) die('--growth-sizes needs positive numbers');
   if (!opt.bisectTimeout) opt.bisectTimeout = 3 * opt.timeout;
+  if (opt.baseline && !existsSync(opt.baseline)) die(`--baseline ${opt.baseline}: no such folder`);
 }
 const cli = join(opt.build, 'bin', 'wqmesh');
 const peer = join(opt.build, 'bin', 'wqmesh_mesh3_peer');
@@ -131,12 +148,29 @@ function failure(r, what = '') {
   return `${what}${how}${line ? `: ${line.slice(0, 160)}` : ''}`;
 }
 
-/** `wqmesh measure` of a mesh file against the input model: the parsed JSON or {error}. */
-function measure(meshPath, model) {
-  const r = spawnSync(cli, ['measure', meshPath, '--input', model, '--json'], { encoding: 'utf8',
-    maxBuffer: 64 << 20 });
+/**
+ * `wqmesh measure` of a mesh file against the input model: the parsed JSON or
+ * {error}. With `stats` (wqmesh's own statistics of that mesh) and a
+ * `wqmesh measure` that takes --stats (issue 14 item 3: the classes recounted
+ * from the written mesh and the stats' protecting balls), that recount too.
+ */
+function measure(meshPath, model, stats = null) {
+  const args = ['measure', meshPath, '--input', model, '--json'];
+  if (stats && cliHas.measureStats) args.push('--stats', stats);
+  const r = spawnSync(cli, args, { encoding: 'utf8', maxBuffer: 64 << 20 });
   if (r.status !== 0) return { error: `measure: ${firstLine(r.stderr)}` };
   return JSON.parse(r.stdout);
+}
+
+/**
+ * The violations of a recount by `wqmesh measure --stats`, wherever its JSON
+ * puts them (top level or under a "recount" or "classes" object), or null
+ * when the measure made no recount.
+ */
+function recountViolations(m) {
+  if (!m || m.error || !cliHas.measureStats) return null;
+  for (const o of [m.recount, m.classes, m]) if (o && Number.isInteger(o.violations)) return o.violations;
+  return null;
 }
 
 // ---- Inputs for TetGen: a clean OFF (comments dropped, STL converted) ------
@@ -195,14 +229,17 @@ function writeCleanOff(model, path) {
 }
 
 // ---- The tools --------------------------------------------------------------
-function runWqmesh(model, name) {
-  const out = join(work, `${name}.wqmesh.mesh`), stats = join(work, `${name}.wqmesh.json`);
+/** wqmesh natively; improve false: with --no-improve (the paper's WQMESH output alone). */
+function runWqmesh(model, name, improve = true) {
+  const tag = improve ? 'wqmesh' : 'wqmesh-no-improve';
+  const out = join(work, `${name}.${tag}.mesh`), stats = join(work, `${name}.${tag}.json`);
   const r = runTimed([cli, 'mesh', model, '-o', out, '--stats', stats, '--quiet', '--measure-floor',
-    '--max-vertices', String(opt.maxVertices)], opt.timeout);
+    '--max-vertices', String(opt.maxVertices), ...(improve ? [] : ['--no-improve'])], opt.timeout);
   const s = existsSync(stats) ? JSON.parse(readFileSync(stats, 'utf8')) : null;
-  const row = { tool: 'wqmesh', wall: r.wall, peakMb: r.peakMb, stats: s, timedOut: r.timedOut };
+  const row = { tool: improve ? 'wqmesh' : 'wqmesh no-improve', wall: r.wall, peakMb: r.peakMb, stats: s,
+    timedOut: r.timedOut };
   if (r.status !== 0) row.note = failure(r);  // exit 3: stopped by the vertex limit, with its cause
-  if (existsSync(out) && r.status === 0) row.m = measure(out, model);
+  if (existsSync(out) && r.status === 0) row.m = measure(out, model, stats);
   return row;
 }
 
@@ -299,6 +336,113 @@ function resultRow(model, r) {
     r.peakMb ? Math.round(r.peakMb) : '-', note];
 }
 
+// ---- Issue 14's goals --------------------------------------------------------
+const VOLUME_TOLERANCE = 1e-12;  // relative volume error of an exactly conforming mesh (rounding only)
+const num = (v) => (v === null || v === undefined ? '-' : (Math.abs(v) < 0.01 && v !== 0
+  ? Number(v).toExponential(1) : Number(v).toFixed(2)));
+/** A goal's cell: "met (a >= b)" or "not met (a < b)"; "n/a (why)" when it does not apply. */
+const verdict = (ok, a, op, b) => `${ok ? 'met' : 'not met'} (${a} ${ok ? op : { '>=': '<', '<=': '>', '<': '>=', '=': '!=' }[op]} ${b})`;
+const na = (why) => `n/a (${why})`;
+/** Tets under 5 degrees per 1000 tets of a measure. */
+const per1000 = (m) => (1000 * m.dihedral_below_5) / m.tets;
+/** The time of phase `name` in wqmesh's stats, or null. */
+const phase = (stats, name) => {
+  const p = stats && (stats.phases || []).find((x) => x.name === name);
+  return p ? p.time_s : null;
+};
+/** The tet count of model `name` in the --baseline folder (its stats file), or null. */
+function baselineTets(name) {
+  if (!opt.baseline) return null;
+  const f = join(opt.baseline, `${name}.json`);
+  if (!existsSync(f)) return null;
+  try { return JSON.parse(readFileSync(f, 'utf8')).tets ?? null; } catch { return null; }
+}
+
+/**
+ * Prints issue 14's goals, one row per model that wqmesh and TetGen
+ * -pq1.414/10 both meshed, each goal "met" or "not met" with its figures, and
+ * the rate of tets under 5 degrees over all those models together; then the
+ * improvement phase beside WQMESH alone (--no-improve) per model.
+ */
+function goals(results) {
+  console.log('\n## Goals of issue 14, per model\n');
+  console.log('wqmesh: the default run' + (cliHas.improve ? ' (improvement on)' : ' (this binary has no improvement ' +
+    'phase)') + '; TetGen: -pq1.414/10; both measured by `wqmesh measure` (unweighted, on the written mesh). ' +
+    'min dih: smallest dihedral angle >= TetGen\'s; <5/1000: tets under 5 degrees per 1000 tets <= TetGen\'s; ' +
+    '>=10 (15): smallest dihedral >= 10 degrees (stretch 15) where the smallest input angle (phi_m of `wqmesh ' +
+    'check`) is at least 10 degrees; violations: the stats\' count' + (cliHas.measureStats
+    ? ' and the recount by `wqmesh measure --stats`' : ' (no recount in this binary)') + ' = 0; conforms: ' +
+    `the stats say conforming and vol err <= ${VOLUME_TOLERANCE}; tets: at most 10% more than --no-improve` +
+    (opt.baseline ? ' (the baseline\'s count beside it, a reference only)' : '') + '; time: the improve phase ' +
+    'under REFINE + PUMP (the stats\' phases).\n');
+  const rows = [];
+  const all = { w5: 0, wt: 0, t5: 0, tt: 0, n: 0 };
+  let met = 0, judged = 0;
+  const count = (cell) => {
+    if (cell.startsWith('met')) { ++met; ++judged; } else if (cell.startsWith('not met')) ++judged;
+    return cell;
+  };
+  for (const { model, rows: tools, native, plain } of results) {
+    const w = native && native.m && !native.m.error ? native.m : null;
+    const tg = tools.find((r) => r.tool === 'TetGen q1.414/10');
+    const t = tg && tg.m && !tg.m.error ? tg.m : null;
+    if (!w || !t) continue;
+    const s = native.stats || {};
+    all.w5 += w.dihedral_below_5; all.wt += w.tets; all.t5 += t.dihedral_below_5; all.tt += t.tets; ++all.n;
+    const minDih = verdict(w.min_dihedral_deg >= t.min_dihedral_deg, num(w.min_dihedral_deg), '>=',
+      num(t.min_dihedral_deg));
+    const rate = verdict(per1000(w) <= per1000(t), per1000(w).toFixed(2), '<=', per1000(t).toFixed(2));
+    let ten;
+    if (!(model.phiM >= 10)) ten = na(`input angle ${num(model.phiM)}`);
+    else {
+      ten = verdict(w.min_dihedral_deg >= 10, num(w.min_dihedral_deg), '>=', '10');
+      if (w.min_dihedral_deg >= 10) ten += w.min_dihedral_deg >= 15 ? ', stretch 15 met' : ', stretch 15 not met';
+    }
+    const recount = recountViolations(w);
+    const v = Number.isInteger(s.violations) ? s.violations : null;
+    const violations = v === null ? na('no stats') : verdict(v === 0 && (recount === null || recount === 0),
+      recount === null ? `${v}` : `${v} / recount ${recount}`, '=', '0');
+    const vol = w.relative_volume_error;
+    const conforms = verdict(s.conforming === true && vol <= VOLUME_TOLERANCE,
+      `${s.conforming === true ? 'conforming' : 'not conforming'}, vol err ${exp(vol)}`, '<=', exp(VOLUME_TOLERANCE));
+    const p = plain && plain.m && !plain.m.error ? plain.m : null;
+    const base = baselineTets(model.name);
+    const ref = base ? `; baseline ${base}, ${w.tets >= base ? '+' : ''}${(100 * (w.tets / base - 1)).toFixed(1)}%` : '';
+    const tets = p ? verdict(w.tets <= 1.1 * p.tets, `${w.tets}`, '<=', `1.1 x ${p.tets}${ref}`)
+      : na(`${cliHas.improve ? 'no --no-improve mesh' : 'no improvement phase'}; ${w.tets} tets${ref}`);
+    const imp = phase(s, 'improve'), rp = (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0);
+    const time = imp === null ? na('no improve phase in the stats')
+      : verdict(imp < rp, `${imp.toFixed(3)} s`, '<', `${rp.toFixed(3)} s`);
+    rows.push([model.name, num(model.phiM), ...[minDih, rate, ten, violations, conforms, tets, time].map(count)]);
+  }
+  table(['model', 'phi_m', 'min dih', '<5/1000', '>=10 (15)', 'violations', 'conforms', 'tets', 'time'], rows, 9);
+  if (all.n) {
+    const w = (1000 * all.w5) / all.wt, t = (1000 * all.t5) / all.tt;
+    console.log(`\n- all ${all.n} models together, tets under 5 degrees per 1000: wqmesh ${w.toFixed(2)} ` +
+      `(${all.w5} of ${all.wt}), TetGen ${t.toFixed(2)} (${all.t5} of ${all.tt}): ` +
+      `${count(verdict(w <= 1.0, w.toFixed(2), '<=', '1.00'))}; ${count(verdict(w <= t, w.toFixed(2), '<=', t.toFixed(2)))}`);
+    console.log(`- goals met: ${met} of ${judged} judged`);
+  }
+
+  console.log('\n## The improvement phase against WQMESH alone (--no-improve)\n');
+  if (!cliHas.improve) console.log('This wqmesh has no improvement phase: one figure per cell, the WQMESH run\'s.\n');
+  console.log('tets, min dih, <5: `wqmesh measure` of the --no-improve mesh -> the default mesh; refine, pump, ' +
+    'improve: the phases\' seconds in the default run\'s stats; operations: the stats\' "improve" object' +
+    (opt.baseline ? '; baseline tets: the --baseline stats\' count' : '') + '.\n');
+  const ops = (o) => (o && typeof o === 'object' ? Object.entries(o).filter(([, x]) => typeof x === 'number')
+    .map(([k, x]) => `${k} ${Number.isInteger(x) ? x : num(x)}`).join(', ') : '');
+  table(['model', 'baseline tets', 'tets', 'min dih', '<5', 'refine s', 'pump s', 'improve s', 'operations'],
+    results.map(({ model, native, plain }) => {
+      const w = native && native.m && !native.m.error ? native.m : null;
+      const p = plain && plain.m && !plain.m.error ? plain.m : null;
+      const s = native && native.stats;
+      const pair = (f) => (p && w ? `${f(p)} -> ${f(w)}` : (w ? f(w) : '-'));
+      return [model.name, baselineTets(model.name) ?? '-', pair((m) => m.tets), pair((m) => num(m.min_dihedral_deg)),
+        pair((m) => m.dihedral_below_5), fixed(phase(s, 'refine'), 3), fixed(phase(s, 'pump'), 3),
+        fixed(phase(s, 'improve'), 3), ops(s && s.improve)];
+    }), 1, true);
+}
+
 // ---- Main -------------------------------------------------------------------
 const haveTime = existsSync(TIME);
 const work = mkdtempSync(join(tmpdir(), 'wqmesh-bench-'));
@@ -313,6 +457,15 @@ if (tools.has('tetgen') && !existsSync(TETGEN)) {
   tools.delete('tetgen');
 }
 if (!haveTime) say(`${TIME} is missing (apt-get install time): no peak memory`);
+// What this binary can do, read from its usage (`wqmesh mesh --help` prints
+// it): the improvement phase (--no-improve in the mesh command's entry) and
+// the recount of the classes (--stats in the measure command's entry).
+const cliHas = (() => {
+  const u = spawnSync(cli, ['mesh', '--help'], { encoding: 'utf8' });
+  const text = `${u.stdout || ''}\n${u.stderr || ''}`;
+  const entry = (command) => (text.match(new RegExp(`^ {2}${command} [\\s\\S]*?(?=^ {2}\\S)`, 'm')) || [''])[0];
+  return { improve: /--no-improve\b/.test(entry('mesh')), measureStats: /--stats\b/.test(entry('measure')) };
+})();
 
 const git = (...a) => spawnSync('git', ['-C', root, ...a], { encoding: 'utf8' }).stdout.trim();
 console.log('# wqmesh benchmark\n');
@@ -322,8 +475,19 @@ console.log(`- wqmesh ${git('rev-parse', '--short', 'HEAD')}${git('status', '--p
   ? ' (with uncommitted changes)' : ''}; build ${opt.build}; node ${process.version}`);
 console.log(`- time limit per model and tool ${opt.timeout} s (Mesh_3 bisection ${opt.bisectTimeout} s, ` +
   `at most ${opt.mesh3Steps} probes); wqmesh --max-vertices ${opt.maxVertices}; tools: ${[...tools].join(', ')}`);
+console.log(cliHas.improve
+  ? '- wqmesh has the improvement phase: "wqmesh" is the default run (improvement on), "wqmesh no-improve" ' +
+    'the same with --no-improve (the paper\'s WQMESH output)'
+  : '- this wqmesh has no improvement phase (no --no-improve in `wqmesh mesh --help`): "wqmesh" is the ' +
+    'WQMESH output, and the goals are judged on it');
+console.log(cliHas.measureStats
+  ? '- `wqmesh measure` takes --stats: the violations are also recounted from the written mesh'
+  : '- `wqmesh measure` takes no --stats: the violations are the stats\' own, not recounted');
+if (opt.baseline) console.log(`- baseline (reference tet counts): ${opt.baseline}`);
 
-if (tools.has('mesh3') && opt.table) {
+if (tools.has('mesh3') && opt.table && existsSync(peer) && !existsSync(join(opt.build, 'CMakeCache.txt'))) {
+  say(`${peer}: used as it is (${opt.build} is no CMake build folder)`);
+} else if (tools.has('mesh3') && opt.table) {
   say(`building the Mesh_3 peer: cmake --build ${opt.build} --target wqmesh_mesh3_peer -j 2`);
   const t0 = performance.now();
   const b = spawnSync('cmake', ['--build', opt.build, '--target', 'wqmesh_mesh3_peer', '-j', '2'],
@@ -341,7 +505,7 @@ if (opt.table) {
     ? readdirSync(dir).filter((f) => /\.(off|stl)$/i.test(f)).sort().map((f) => join(dir, f)) : []);
   if (!existsSync(shared) && !opt.models.length) say(`${shared} is absent: only examples/models`);
   const candidates = opt.models.length ? opt.models : [...list(shared), ...list(join(root, 'examples', 'models'))];
-  const models = [], skipped = [];
+  const models = [], skipped = [], small = [];
   for (const model of candidates) {
     const r = spawnSync(cli, ['check', model, '--compact'], { encoding: 'utf8', maxBuffer: 256 << 20 });
     if (r.status === 2) {
@@ -350,19 +514,30 @@ if (opt.table) {
       continue;
     }
     if (r.status !== 0) { skipped.push(`${basename(model)} (check exit ${r.status})`); continue; }
-    const box = JSON.parse(r.stdout).analysis.input_box;
+    const analysis = JSON.parse(r.stdout).analysis;
+    const box = analysis.input_box;
     const diagonal = Math.hypot(...box.hi.map((v, i) => v - box.lo[i]));
-    models.push({ path: model, name: basename(model), diagonal });
+    // The smallest local feature size f(u) at a sharp vertex (no sharp vertex: none smaller than the box).
+    const lfs = Math.min(diagonal, ...(analysis.lfs || []).map((x) => x.f));
+    if (opt.quick && lfs < diagonal / 200) { small.push(basename(model)); continue; }
+    models.push({ path: model, name: basename(model), diagonal, phiM: analysis.phi_m_degrees });
   }
-  console.log(`- skipped, rejected by \`wqmesh check\` (exit 2): ${skipped.join('; ') || 'none'}\n`);
+  console.log(`- skipped, rejected by \`wqmesh check\` (exit 2): ${skipped.join('; ') || 'none'}`);
+  if (opt.quick) console.log(`- --quick: left out, smallest f(u) under 1/200 of the diagonal: ${small.join(', ') || 'none'}`);
+  console.log('');
 
   const results = [];
   for (const model of models) {
     const rows = [];
     const log = (r) => say(`${model.name} ${r.tool}: ${r.timedOut ? 'timeout' : fixed(r.wall, 2) + ' s'}` +
       `${r.m && r.m.tets ? `, ${r.m.tets} tets` : ''}${r.note ? `, ${r.note}` : ''}`);
-    let native = null, wasm = null;
-    if (tools.has('wqmesh')) { native = runWqmesh(model.path, model.name); rows.push(native); log(native); }
+    let native = null, wasm = null, plain = null;
+    if (tools.has('wqmesh')) {
+      native = runWqmesh(model.path, model.name);
+      rows.push(native);
+      log(native);
+      if (cliHas.improve) { plain = runWqmesh(model.path, model.name, false); rows.push(plain); log(plain); }
+    }
     if (tools.has('wasm')) { wasm = runWasm(model.path, model.name, native); rows.push(wasm); log(wasm); }
     if (tools.has('mesh3')) {
       const target = [native, wasm].map((r) => r && r.m && r.m.tets).find(Boolean);
@@ -376,7 +551,7 @@ if (opt.table) {
         rows.push(r);
         log(r);
       }
-    results.push({ model, rows, native, wasm });
+    results.push({ model, rows, native, wasm, plain });
   }
 
   console.log('## All tools, measured by `wqmesh measure`\n');
@@ -384,6 +559,8 @@ if (opt.table) {
     'unweighted; vol err: |V_mesh - V_input| / V_input; MB: peak resident memory.\n');
   table(['tool', 'model', 'time s', 'vertices', 'tets', 'min dih', '<3', '<5', '<10', 'R/l>2.2', 'vol err', 'MB',
     'failure'], results.flatMap(({ model, rows }) => rows.map((r) => resultRow(model.name, r))), 2, true);
+
+  if (tools.has('wqmesh')) goals(results);
 
   if (tools.has('wqmesh')) {
     console.log('\n## wqmesh: run vs Delaunay floor, wasm vs native\n');
