@@ -1,14 +1,15 @@
 // wqmesh: the tets inside the polyhedron (flood fill across the walls, the
-// input subfacets), their classes and statistics: the mesh WQMESH returns.
+// input subfacets) and their classes (classify.cpp): the mesh WQMESH returns.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "mesher/classify.h"
 #include "mesher/mesher.h"
-#include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
 
@@ -308,31 +309,9 @@ MeshResult Mesher::extract(bool stoppable) {
       mesh.boundary_facet.push_back(it == facet_of.end() ? common_facet(f) : it->second);
     }
   }
-  r.quality = stoppable ? mesh_quality(mesh, [&] { return !must_stop(); }) : mesh_quality(mesh);
-  if (r.quality.size() != mesh.tets.size()) return stopped_result();
-  // Classes (see TetClass).
-  r.tet_class.resize(mesh.tets.size(), TetClass::good);
-  for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
-    if (must_stop()) return stopped_result();
-    const TetQuality& q = r.quality[i];
-    const bool skinny = q.radius_edge > opt_.rho0;
-    const bool sliver = !skinny && q.min_dihedral_deg < opt_.theta_deg;
-    if (!skinny && !sliver) continue;
-    const auto& t = mesh.tets[i];
-    double r2;
-    const Point3 z =
-        circumcenter(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], r2);
-    bool near = balls_.contains(z);
-    for (int k = 0; k < 4 && !near; ++k) {
-      const double n = r.nearest_neighbour[t[k]];
-      near = balls_.expansion_encroached(mesh.vertices[t[k]], n * n / 9);
-    }
-    r.tet_class[i] = !near ? TetClass::violation : skinny ? TetClass::skinny_near : TetClass::sliver_near;
-    r.slivers += sliver;
-    r.skinny += skinny;
-    r.near_small_angle += near;
-    r.violations += !near;
-  }
+  // The quality and classes of the tets (classify.cpp).
+  if (!classify_tets(r, balls_, opt_, stoppable ? std::function<bool()>([&] { return !must_stop(); }) : nullptr))
+    return stopped_result();
   return r;
 }
 
