@@ -3,7 +3,8 @@
 # (idempotent): Debian packages for the native, wasm, fuzz (clang-14 with
 # libFuzzer) and sanitizer builds, then the npm packages of package-lock.json.
 # Chromium (Debian's package, /usr/bin/chromium) runs the browser tests
-# (tests/browser/, through playwright-core).
+# (tests/browser/, through playwright-core); clang-format formats the C++
+# (scripts/format.sh).
 # SPDX-License-Identifier: GPL-3.0-or-later
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -44,6 +45,8 @@ need_path /usr/bin/time time
 need_cmd npm npm
 # The browser tests (tests/browser/) drive Debian's Chromium with playwright-core.
 need_path /usr/bin/chromium chromium
+# The C++ format (.clang-format, scripts/format.sh): Debian's clang-format.
+need_cmd clang-format clang-format
 
 # De-duplicate, keeping the order.
 if [ ${#missing[@]} -gt 0 ]; then

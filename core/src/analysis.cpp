@@ -38,9 +38,7 @@ using geometry::dot;
 using geometry::norm;
 using geometry::sub;
 /// The angle between two vectors, in degrees, in [0, 180].
-double angle_degrees(const V& a, const V& b) {
-  return std::atan2(norm(cross(a, b)), dot(a, b)) * (180 / kPi);
-}
+double angle_degrees(const V& a, const V& b) { return std::atan2(norm(cross(a, b)), dot(a, b)) * (180 / kPi); }
 
 // ---- exact polynomials over a number type NT ----------------------------------
 template <class NT>
@@ -108,14 +106,11 @@ class Analyzer {
       const auto& loops = plc_.facets[f].loops;
       for (std::size_t l = 0; l < loops.size(); ++l)
         for (std::size_t r = 0; r < loops[l].size(); ++r)
-          vertex_facets_[loops[l][r]].push_back({f, static_cast<int>(l), static_cast<int>(r),
-                                                 convex && turns[r] > 0});
+          vertex_facets_[loops[l][r]].push_back({f, static_cast<int>(l), static_cast<int>(r), convex && turns[r] > 0});
     }
     for (auto& list : vertex_facets_) {
-      std::stable_sort(list.begin(), list.end(),
-                       [](const Corner& x, const Corner& y) { return x.f < y.f; });
-      list.erase(std::unique(list.begin(), list.end(),
-                             [](const Corner& x, const Corner& y) { return x.f == y.f; }),
+      std::stable_sort(list.begin(), list.end(), [](const Corner& x, const Corner& y) { return x.f < y.f; });
+      list.erase(std::unique(list.begin(), list.end(), [](const Corner& x, const Corner& y) { return x.f == y.f; }),
                  list.end());
     }
     check_angle_budget();
@@ -294,8 +289,7 @@ class Analyzer {
       const int a = loop[(r + m - 1) % m], u = loop[r], b = loop[(r + 1) % m];
       const int s = exact::sign([&](auto z) {
         using NT = decltype(z);
-        return dotn(exact_normal<NT>(f), crossn(lift<NT>(P(u)) - lift<NT>(P(a)),
-                                                lift<NT>(P(b)) - lift<NT>(P(u))));
+        return dotn(exact_normal<NT>(f), crossn(lift<NT>(P(u)) - lift<NT>(P(a)), lift<NT>(P(b)) - lift<NT>(P(u))));
       });
       if (s < 0) return false;
       turns[r] = s;
@@ -370,8 +364,7 @@ class Analyzer {
     const int s2 = side(u, a, true);   // w x (a - u) . N: w right of the side to a
     const int turn = exact::sign([&](auto z) {
       using NT = decltype(z);
-      return dotn(exact_normal<NT>(f), crossn(lift<NT>(P(u)) - lift<NT>(P(a)),
-                                              lift<NT>(P(b)) - lift<NT>(P(u))));
+      return dotn(exact_normal<NT>(f), crossn(lift<NT>(P(u)) - lift<NT>(P(a)), lift<NT>(P(b)) - lift<NT>(P(u))));
     });
     const bool inside = turn > 0 ? (s1 > 0 && s2 > 0) : turn < 0 ? (s1 > 0 || s2 > 0) : s1 > 0;
     if (inside) return EdgeFacetAngle{u, -1, f, plane_angle, true};
@@ -392,13 +385,12 @@ class Analyzer {
       if (here > worst) worst = here, worst_vertex = u;
     }
     if (total <= kMaxAngles) return;
-    throw InputError(InputErrorKind::too_large,
-                     "the analysis would list up to " + std::to_string(total) +
-                         " edge-edge and edge-facet angles, beyond its budget of " +
-                         std::to_string(kMaxAngles) + " angles (PLC vertex " +
-                         std::to_string(worst_vertex) + " has " +
-                         std::to_string(vertex_edges_[worst_vertex].size()) + " edges and " +
-                         std::to_string(vertex_facets_[worst_vertex].size()) + " facets)");
+    throw InputError(InputErrorKind::too_large, "the analysis would list up to " + std::to_string(total) +
+                                                    " edge-edge and edge-facet angles, beyond its budget of " +
+                                                    std::to_string(kMaxAngles) + " angles (PLC vertex " +
+                                                    std::to_string(worst_vertex) + " has " +
+                                                    std::to_string(vertex_edges_[worst_vertex].size()) + " edges and " +
+                                                    std::to_string(vertex_facets_[worst_vertex].size()) + " facets)");
   }
 
   /// Exact: the angle is acute iff (p - u).(v - u) > 0 for some p in F. That
@@ -433,8 +425,7 @@ class Analyzer {
     const V w = sub(P(v), P(u));
     const V& n = frames_[f].unit;
     const double wn = dot(w, n);
-    const double plane_angle =
-        std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
+    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
     double best = 180;
     for (const auto& loop : plc_.facets[f].loops) {
       const std::size_t m = loop.size();

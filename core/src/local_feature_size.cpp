@@ -232,8 +232,7 @@ class FeatureSearch {
         if (e.a == u || e.b == u) return inf;
         return segment_distance2(p, plc_.vertices[e.a], plc_.vertices[e.b]);
       }
-      case Kind::facet:
-        return facet_distance2(el.index, u, best2);
+      case Kind::facet: return facet_distance2(el.index, u, best2);
     }
     return inf;
   }
@@ -282,8 +281,7 @@ class FeatureSearch {
 
 }  // namespace
 
-std::vector<double> local_feature_sizes(const PLC& plc, const std::vector<int>& vertices,
-                                        const Box& bounding_box) {
+std::vector<double> local_feature_sizes(const PLC& plc, const std::vector<int>& vertices, const Box& bounding_box) {
   std::vector<double> result;
   result.reserve(vertices.size());
   if (vertices.empty()) return result;

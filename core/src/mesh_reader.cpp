@@ -24,8 +24,7 @@ namespace {
 /// ("" for Medit, "node" or "ele" for TetGen).
 class Tokens {
  public:
-  Tokens(const char* data, std::size_t size, std::string where)
-      : data_(data), size_(size), where_(std::move(where)) {}
+  Tokens(const char* data, std::size_t size, std::string where) : data_(data), size_(size), where_(std::move(where)) {}
 
   /// The next token, or false at the end of the data.
   bool next(std::string& token) {
@@ -42,8 +41,7 @@ class Tokens {
     }
     if (pos_ >= size_) return false;
     const std::size_t start = pos_;
-    while (pos_ < size_ && !std::isspace(static_cast<unsigned char>(data_[pos_])) && data_[pos_] != '#')
-      ++pos_;
+    while (pos_ < size_ && !std::isspace(static_cast<unsigned char>(data_[pos_])) && data_[pos_] != '#') ++pos_;
     token.assign(data_ + start, pos_ - start);
     token_line_ = line_;
     return true;
@@ -86,9 +84,8 @@ class Tokens {
     // Each token takes at least one character and one separator.
     const std::size_t room = (size_ - pos_) / (2 * std::max<std::size_t>(tokens_per_entry, 1)) + 1;
     if (static_cast<unsigned long long>(n) > room)
-      fail(InputErrorKind::truncated, what + " is " + std::to_string(n) +
-                                          " but the data left holds at most " +
-                                          std::to_string(room) + " entries");
+      fail(InputErrorKind::truncated,
+           what + " is " + std::to_string(n) + " but the data left holds at most " + std::to_string(room) + " entries");
     return static_cast<std::size_t>(n);
   }
 
@@ -118,13 +115,25 @@ int skipped_section_tokens(const std::string& keyword) {
     const char* name;
     int tokens;
   } kSections[] = {
-      {"edges", 3},           {"quadrilaterals", 5},    {"hexahedra", 9},
-      {"prisms", 7},          {"pyramids", 6},          {"corners", 1},
-      {"ridges", 1},          {"requiredvertices", 1},  {"requirededges", 1},
-      {"requiredtriangles", 1}, {"requiredquadrilaterals", 1}, {"requiredtetrahedra", 1},
-      {"normals", 3},         {"tangents", 3},          {"normalatvertices", 2},
-      {"tangentatvertices", 2}, {"normalattrianglevertices", 3},
-      {"normalatquadrilateralvertices", 3}, {"tangentatedgevertices", 3},
+      {"edges", 3},
+      {"quadrilaterals", 5},
+      {"hexahedra", 9},
+      {"prisms", 7},
+      {"pyramids", 6},
+      {"corners", 1},
+      {"ridges", 1},
+      {"requiredvertices", 1},
+      {"requirededges", 1},
+      {"requiredtriangles", 1},
+      {"requiredquadrilaterals", 1},
+      {"requiredtetrahedra", 1},
+      {"normals", 3},
+      {"tangents", 3},
+      {"normalatvertices", 2},
+      {"tangentatvertices", 2},
+      {"normalattrianglevertices", 3},
+      {"normalatquadrilateralvertices", 3},
+      {"tangentatedgevertices", 3},
   };
   for (const auto& s : kSections)
     if (keyword == s.name) return s.tokens;
@@ -135,10 +144,10 @@ void check_indices(const TetMesh& mesh, const std::vector<long>& tet_line, const
                    const std::string& where) {
   const long long n = static_cast<long long>(mesh.vertices.size());
   auto bad = [&](const char* what, std::size_t i, long long index, long line) {
-    throw InputError(InputErrorKind::bad_index,
-                     (where.empty() ? "line " : where + " line ") + std::to_string(line) + ": " + what + " " +
-                         std::to_string(i + 1) + " refers to vertex " + std::to_string(index + 1) +
-                         " (1-based) but there are " + std::to_string(n) + " vertices");
+    throw InputError(InputErrorKind::bad_index, (where.empty() ? "line " : where + " line ") + std::to_string(line) +
+                                                    ": " + what + " " + std::to_string(i + 1) + " refers to vertex " +
+                                                    std::to_string(index + 1) + " (1-based) but there are " +
+                                                    std::to_string(n) + " vertices");
   };
   for (std::size_t i = 0; i < mesh.tets.size(); ++i)
     for (int v : mesh.tets[i])
@@ -178,8 +187,7 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 TetMesh read_medit(const char* data, std::size_t size) {
   if (data == nullptr || size == 0) throw InputError(InputErrorKind::empty, "the mesh file is empty");
   if (std::memchr(data, '\0', std::min<std::size_t>(size, 256)) != nullptr)
-    throw InputError(InputErrorKind::syntax,
-                     "binary data: only ASCII Medit (.mesh) is read, not binary .meshb");
+    throw InputError(InputErrorKind::syntax, "binary data: only ASCII Medit (.mesh) is read, not binary .meshb");
   Tokens in(data, size, "");
   TetMesh mesh;
   std::vector<long> tet_line, tri_line;
@@ -191,8 +199,7 @@ TetMesh read_medit(const char* data, std::size_t size) {
     any_keyword = true;
     if (keyword == "meshversionformatted") {
       const long long v = in.need_integer("the MeshVersionFormatted value");
-      if (v < 1 || v > 4)
-        in.fail(InputErrorKind::syntax, "unknown MeshVersionFormatted " + std::to_string(v));
+      if (v < 1 || v > 4) in.fail(InputErrorKind::syntax, "unknown MeshVersionFormatted " + std::to_string(v));
     } else if (keyword == "dimension") {
       const long long d = in.need_integer("the Dimension value");
       if (d != 3) in.fail(InputErrorKind::syntax, "Dimension " + std::to_string(d) + ": only 3 is read");
@@ -254,23 +261,22 @@ TetMesh read_tetgen(const char* node, std::size_t node_size, const char* ele, st
     if (attributes < 0 || attributes > 1000)
       in.fail(InputErrorKind::syntax, "bad number of attributes " + std::to_string(attributes));
     if (markers != 0 && markers != 1)
-      in.fail(InputErrorKind::syntax,
-              "the number of boundary markers must be 0 or 1, not " + std::to_string(markers));
+      in.fail(InputErrorKind::syntax, "the number of boundary markers must be 0 or 1, not " + std::to_string(markers));
     if (n <= 0) in.fail(InputErrorKind::empty, "the .node file declares no points");
     const std::size_t per = static_cast<std::size_t>(4 + attributes + markers);
     if (static_cast<unsigned long long>(n) > node_size / (2 * per) + 1)
-      in.fail(InputErrorKind::truncated, "the .node file declares " + std::to_string(n) +
-                                             " points but cannot hold that many");
+      in.fail(InputErrorKind::truncated,
+              "the .node file declares " + std::to_string(n) + " points but cannot hold that many");
     mesh.vertices.reserve(static_cast<std::size_t>(n));
     for (long long i = 0; i < n; ++i) {
       const long long index = in.need_integer("a point index");
       if (i == 0) {
         base = index;
-        if (base != 0 && base != 1) in.fail(InputErrorKind::syntax, "the first point index must be 0 or 1, not " +
-                                                                        std::to_string(base));
+        if (base != 0 && base != 1)
+          in.fail(InputErrorKind::syntax, "the first point index must be 0 or 1, not " + std::to_string(base));
       } else if (index != base + i) {
-        in.fail(InputErrorKind::syntax, "expected point index " + std::to_string(base + i) + ", got " +
-                                            std::to_string(index));
+        in.fail(InputErrorKind::syntax,
+                "expected point index " + std::to_string(base + i) + ", got " + std::to_string(index));
       }
       Point3 p;
       for (double& c : p) c = in.need_double("a point coordinate");
@@ -284,16 +290,16 @@ TetMesh read_tetgen(const char* node, std::size_t node_size, const char* ele, st
     Tokens in(ele, ele_size, "ele");
     const long long m = in.need_integer("the number of tetrahedra");
     const long long k = in.need_integer("the nodes per tetrahedron");
-    if (k != 4 && k != 10) in.fail(InputErrorKind::syntax, "nodes per tetrahedron must be 4 or 10, not " +
-                                                                std::to_string(k));
+    if (k != 4 && k != 10)
+      in.fail(InputErrorKind::syntax, "nodes per tetrahedron must be 4 or 10, not " + std::to_string(k));
     const long long attributes = in.need_integer("the number of tetrahedron attributes");
     if (attributes < 0 || attributes > 1000)
       in.fail(InputErrorKind::syntax, "bad number of attributes " + std::to_string(attributes));
     if (m <= 0) in.fail(InputErrorKind::empty, "the .ele file declares no tetrahedra");
     const std::size_t per = static_cast<std::size_t>(1 + k + attributes);
     if (static_cast<unsigned long long>(m) > ele_size / (2 * per) + 1)
-      in.fail(InputErrorKind::truncated, "the .ele file declares " + std::to_string(m) +
-                                             " tetrahedra but cannot hold that many");
+      in.fail(InputErrorKind::truncated,
+              "the .ele file declares " + std::to_string(m) + " tetrahedra but cannot hold that many");
     mesh.tets.reserve(static_cast<std::size_t>(m));
     tet_line.reserve(static_cast<std::size_t>(m));
     for (long long i = 0; i < m; ++i) {

@@ -19,8 +19,7 @@ namespace {
 /// every token. A line ends in LF, CRLF or a lone CR.
 class OffScanner {
  public:
-  OffScanner(const char* data, std::size_t size)
-      : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
+  OffScanner(const char* data, std::size_t size) : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
 
   /// Moves to the next token; false at the end of the data.
   bool next(std::string& token, long& line) {
@@ -48,9 +47,7 @@ class OffScanner {
   long line() const { return line_; }
 
  private:
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-  }
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
   /// Skips blanks and comments; crosses line ends only when `cross` is set.
   void skip_blank(bool cross) {
     while (p_ < end_) {
@@ -123,18 +120,17 @@ bool is_off_keyword(const std::string& t) {
 PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limits) {
   if (size > limits.max_bytes)
     throw InputError(InputErrorKind::too_large,
-                     "OFF: " + std::to_string(size) + " bytes exceed the limit of " +
-                         std::to_string(limits.max_bytes));
+                     "OFF: " + std::to_string(size) + " bytes exceed the limit of " + std::to_string(limits.max_bytes));
   OffScanner in(data, size);
   std::string tok;
   long line = 1;
   if (!in.next(tok, line)) throw InputError(InputErrorKind::empty, "OFF: the file is empty");
-  if (!is_off_keyword(tok)) fail(InputErrorKind::syntax, line, "expected the OFF header, found '" + escape_bytes(tok) + "'");
+  if (!is_off_keyword(tok))
+    fail(InputErrorKind::syntax, line, "expected the OFF header, found '" + escape_bytes(tok) + "'");
 
   // `what` names what is missing; it is only called when the data has ended.
   auto need = [&](auto what) {
-    if (!in.next(tok, line))
-      fail(InputErrorKind::truncated, in.line(), "the file ends before " + std::string(what()));
+    if (!in.next(tok, line)) fail(InputErrorKind::truncated, in.line(), "the file ends before " + std::string(what()));
   };
   unsigned long long nv = 0, nf = 0, ne = 0;
   need([] { return "the vertex count"; });
@@ -162,8 +158,10 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
   for (unsigned long long i = 0; i < nv; ++i) {
     Point3 p{};
     for (int k = 0; k < 3; ++k) {
-      need([&] { return "coordinate " + std::to_string(k + 1) + " of vertex " + std::to_string(i) + " (" +
-            std::to_string(nv) + " declared)"; });
+      need([&] {
+        return "coordinate " + std::to_string(k + 1) + " of vertex " + std::to_string(i) + " (" + std::to_string(nv) +
+               " declared)";
+      });
       if (!parse_double(tok, p[k]))
         fail(InputErrorKind::syntax, line,
              "vertex " + std::to_string(i) + ": bad coordinate '" + escape_bytes(tok) + "'");
@@ -181,11 +179,12 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
     const long face_line = line;
     unsigned long long n = 0;
     if (!parse_count(tok, n))
-      fail(InputErrorKind::syntax, line, "face " + std::to_string(f) + ": bad vertex count '" + escape_bytes(tok) + "'");
+      fail(InputErrorKind::syntax, line,
+           "face " + std::to_string(f) + ": bad vertex count '" + escape_bytes(tok) + "'");
     if (n > limits.max_face_size)
       fail(InputErrorKind::too_large, line,
-           "face " + std::to_string(f) + " has " + std::to_string(n) +
-               " vertices, beyond the limit of " + std::to_string(limits.max_face_size));
+           "face " + std::to_string(f) + " has " + std::to_string(n) + " vertices, beyond the limit of " +
+               std::to_string(limits.max_face_size));
     std::vector<int> face;
     face.reserve(static_cast<std::size_t>(std::min<unsigned long long>(n, size)));
     for (unsigned long long k = 0; k < n; ++k) {
@@ -196,8 +195,8 @@ PolygonSoup read_off(const char* data, std::size_t size, const InputLimits& limi
              "face " + std::to_string(f) + ": bad vertex index '" + escape_bytes(tok) + "'");
       if (idx < 0 || static_cast<unsigned long long>(idx) >= nv)
         fail(InputErrorKind::bad_index, line,
-             "face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) +
-                 ", but there are " + std::to_string(nv) + " vertices");
+             "face " + std::to_string(f) + " refers to vertex " + std::to_string(idx) + ", but there are " +
+                 std::to_string(nv) + " vertices");
       face.push_back(static_cast<int>(idx));
     }
     in.skip_line();  // colour values

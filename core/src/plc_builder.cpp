@@ -8,16 +8,16 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <numeric>
 #include <map>
+#include <numeric>
 #include <set>
 #include <tuple>
 #include <unordered_map>
 
 #include "cgal_types.h"
 #include "exact.h"
-#include "validation.h"
 #include "hashing.h"
+#include "validation.h"
 #include "wqmesh/input.h"
 
 namespace wqmesh {
@@ -45,7 +45,7 @@ using validation::coords;
 /// A half-edge of the triangulated surface: triangle t, its side k going from
 /// corner k to corner k+1.
 struct HalfEdge {
-  int lo, hi;   // the edge's vertices, lo < hi
+  int lo, hi;  // the edge's vertices, lo < hi
   int t, k;
 };
 
@@ -67,15 +67,9 @@ class Builder {
   }
   std::string tri_name(int t) const { return face_name(tri_face_[t]); }
   /// A merged vertex named by its first index in the file and coordinates.
-  std::string vertex_name(int v) const {
-    return "vertex " + std::to_string(first_index_[v]) + " " + coords(pts_[v]);
-  }
-  std::string edge_name(int a, int b) const {
-    return "edge from " + vertex_name(a) + " to " + vertex_name(b);
-  }
-  [[noreturn]] void fail(InputErrorKind kind, const std::string& what) const {
-    throw InputError(kind, what);
-  }
+  std::string vertex_name(int v) const { return "vertex " + std::to_string(first_index_[v]) + " " + coords(pts_[v]); }
+  std::string edge_name(int a, int b) const { return "edge from " + vertex_name(a) + " to " + vertex_name(b); }
+  [[noreturn]] void fail(InputErrorKind kind, const std::string& what) const { throw InputError(kind, what); }
 
   void check_and_merge_points();
   void check_faces();
@@ -95,10 +89,10 @@ class Builder {
   std::vector<int> first_index_;         // merged point -> first soup index
   std::vector<std::vector<int>> faces_;  // soup faces on merged points
   std::vector<std::array<int, 3>> tris_;
-  std::vector<int> tri_face_;            // triangle -> soup face
-  std::vector<std::array<int, 3>> nbr_;  // triangle across side k (k -> k+1)
-  std::vector<std::vector<int>> shells_; // connected components (triangles)
-  std::vector<char> reversed_;           // triangle reversed from the input
+  std::vector<int> tri_face_;             // triangle -> soup face
+  std::vector<std::array<int, 3>> nbr_;   // triangle across side k (k -> k+1)
+  std::vector<std::vector<int>> shells_;  // connected components (triangles)
+  std::vector<char> reversed_;            // triangle reversed from the input
 };
 
 void Builder::check_and_merge_points() {
@@ -108,19 +102,16 @@ void Builder::check_and_merge_points() {
   for (std::size_t i = 0; i < P.size(); ++i)
     for (double x : P[i])
       if (!std::isfinite(x))
-        fail(InputErrorKind::non_finite,
-             "point " + std::to_string(i) + " has a non-finite coordinate " + coords(P[i]));
+        fail(InputErrorKind::non_finite, "point " + std::to_string(i) + " has a non-finite coordinate " + coords(P[i]));
   for (std::size_t f = 0; f < soup_.faces.size(); ++f) {
     const auto& face = soup_.faces[f];
     for (int v : face)
       if (v < 0 || static_cast<std::size_t>(v) >= P.size())
-        fail(InputErrorKind::bad_index, face_name(static_cast<int>(f)) + " refers to point " +
-                                            std::to_string(v) + ", but there are " +
-                                            std::to_string(P.size()) + " points");
+        fail(InputErrorKind::bad_index, face_name(static_cast<int>(f)) + " refers to point " + std::to_string(v) +
+                                            ", but there are " + std::to_string(P.size()) + " points");
     if (face.size() < 3)
       fail(InputErrorKind::degenerate_face,
-           face_name(static_cast<int>(f)) + " has only " + std::to_string(face.size()) +
-               " vertices");
+           face_name(static_cast<int>(f)) + " has only " + std::to_string(face.size()) + " vertices");
   }
   // Merge identical points (exact equality; -0 == +0) among the used ones.
   std::vector<char> used(P.size(), 0);
@@ -145,8 +136,7 @@ void Builder::check_and_merge_points() {
     }
     remap[i] = it->second;
   }
-  if (unused > 0)
-    warnings_.push_back(std::to_string(unused) + " point(s) used by no face were dropped");
+  if (unused > 0) warnings_.push_back(std::to_string(unused) + " point(s) used by no face were dropped");
   if (merged > 0)
     warnings_.push_back(std::to_string(merged) +
                         " point(s) with the coordinates of an earlier point were merged into it");
@@ -165,8 +155,7 @@ void Builder::check_faces() {
     std::sort(s.begin(), s.end());
     auto d = std::adjacent_find(s.begin(), s.end());
     if (d != s.end())
-      fail(InputErrorKind::degenerate_face,
-           face_name(static_cast<int>(f)) + " uses " + vertex_name(*d) + " twice");
+      fail(InputErrorKind::degenerate_face, face_name(static_cast<int>(f)) + " uses " + vertex_name(*d) + " twice");
   }
   // Duplicate faces: the same vertex set.
   std::unordered_map<std::string, int> sets;
@@ -176,9 +165,8 @@ void Builder::check_faces() {
     std::string key(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(int));
     auto [it, fresh] = sets.emplace(std::move(key), static_cast<int>(f));
     if (!fresh)
-      fail(InputErrorKind::duplicate_face, face_name(it->second) + " and " +
-                                               face_name(static_cast<int>(f)) +
-                                               " have the same vertices");
+      fail(InputErrorKind::duplicate_face,
+           face_name(it->second) + " and " + face_name(static_cast<int>(f)) + " have the same vertices");
   }
   std::set<std::pair<int, int>> edges;
   for (const auto& face : faces_)
@@ -201,8 +189,8 @@ void Builder::triangulate() {
       if (!CGAL::collinear(p0, p1, to_cgal(pts_[face[i]]))) c = i;
     if (c < 0)
       fail(InputErrorKind::degenerate_face,
-           face_name(static_cast<int>(f)) + " has zero area: its vertices are collinear, e.g. " +
-               vertex_name(face[0]) + ", " + vertex_name(face[1]) + ", " + vertex_name(face[2]));
+           face_name(static_cast<int>(f)) + " has zero area: its vertices are collinear, e.g. " + vertex_name(face[0]) +
+               ", " + vertex_name(face[1]) + ", " + vertex_name(face[2]));
     if (n == 3) {
       tris_.push_back({face[0], face[1], face[2]});
       tri_face_.push_back(static_cast<int>(f));
@@ -211,8 +199,7 @@ void Builder::triangulate() {
     bool planar = true;
     const auto pc = to_cgal(pts_[face[c]]);
     for (int i = 2; i < n && planar; ++i)
-      if (i != c && CGAL::orientation(p0, p1, pc, to_cgal(pts_[face[i]])) != CGAL::COPLANAR)
-        planar = false;
+      if (i != c && CGAL::orientation(p0, p1, pc, to_cgal(pts_[face[i]])) != CGAL::COPLANAR) planar = false;
     std::vector<std::array<int, 3>> out;
     if (!validation::triangulate_polygon(pts_, face, out))
       fail(InputErrorKind::self_intersection,
@@ -228,11 +215,9 @@ void Builder::triangulate() {
   rep_.faces_split = split.size();
   if (!split.empty()) {
     std::string list;
-    for (std::size_t i = 0; i < split.size() && i < 5; ++i)
-      list += (i ? ", " : "") + face_name(split[i]);
+    for (std::size_t i = 0; i < split.size() && i < 5; ++i) list += (i ? ", " : "") + face_name(split[i]);
     if (split.size() > 5) list += ", ...";
-    warnings_.push_back(std::to_string(split.size()) +
-                        " non-planar polygon(s) were split into triangles: " + list);
+    warnings_.push_back(std::to_string(split.size()) + " non-planar polygon(s) were split into triangles: " + list);
   }
 }
 
@@ -263,14 +248,12 @@ void Builder::build_adjacency() {
   };
   for (auto [i, j] : groups)
     if (j - i > 2)
-      fail(InputErrorKind::non_manifold_edge,
-           "non-manifold " + edge_name(hes[i].lo, hes[i].hi) + ": it is in " +
-               std::to_string(j - i) + " faces: " + faces_of(i, j));
+      fail(InputErrorKind::non_manifold_edge, "non-manifold " + edge_name(hes[i].lo, hes[i].hi) + ": it is in " +
+                                                  std::to_string(j - i) + " faces: " + faces_of(i, j));
   for (auto [i, j] : groups)
     if (j - i == 1)
       fail(InputErrorKind::open_boundary,
-           "open boundary: the " + edge_name(hes[i].lo, hes[i].hi) + " is in only one face, " +
-               tri_name(hes[i].t));
+           "open boundary: the " + edge_name(hes[i].lo, hes[i].hi) + " is in only one face, " + tri_name(hes[i].t));
   if (faces_.size() < 4)
     fail(InputErrorKind::too_few_faces,
          "only " + std::to_string(faces_.size()) + " faces: a polyhedron needs at least 4");
@@ -302,10 +285,8 @@ void Builder::check_vertex_fans() {
         root[v] = r;
       } else if (root[v] != r) {
         fail(InputErrorKind::non_manifold_vertex,
-             "non-manifold " + vertex_name(v) +
-                 ": the faces around it form more than one fan (e.g. " +
-                 tri_name(root[v] / 3) + " and " + tri_name(static_cast<int>(t)) +
-                 " are not connected around it)");
+             "non-manifold " + vertex_name(v) + ": the faces around it form more than one fan (e.g. " +
+                 tri_name(root[v] / 3) + " and " + tri_name(static_cast<int>(t)) + " are not connected around it)");
       }
     }
 }
@@ -332,9 +313,8 @@ void Builder::orient() {
           flip[o] = want;
           queue.push_back(o);
         } else if (flip[o] != want) {
-          fail(InputErrorKind::not_orientable,
-               "the surface is not orientable: no orientation of " + tri_name(t) + " and " +
-                   tri_name(o) + " agrees along the " + edge_name(a, b));
+          fail(InputErrorKind::not_orientable, "the surface is not orientable: no orientation of " + tri_name(t) +
+                                                   " and " + tri_name(o) + " agrees along the " + edge_name(a, b));
         }
       }
     }
@@ -358,8 +338,7 @@ void Builder::orient() {
     if (flip[t]) nbr_[t] = {nbr_[t][2], nbr_[t][1], nbr_[t][0]};
   const auto count = static_cast<std::size_t>(std::count(face_flipped.begin(), face_flipped.end(), 1));
   if (count > 0)
-    warnings_.push_back(std::to_string(count) +
-                        " face(s) were reversed to orient the surface consistently");
+    warnings_.push_back(std::to_string(count) + " face(s) were reversed to orient the surface consistently");
 }
 
 /// Winding number of the closed triangulated shell `tris` around p (not on
@@ -381,8 +360,8 @@ double winding_number(const std::vector<Point3>& pts, const std::vector<std::arr
     const double det = v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
                        v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
                        v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);
-    const double den = len[0] * len[1] * len[2] + dot3(v[0], v[1]) * len[2] +
-                       dot3(v[0], v[2]) * len[1] + dot3(v[1], v[2]) * len[0];
+    const double den =
+        len[0] * len[1] * len[2] + dot3(v[0], v[1]) * len[2] + dot3(v[0], v[2]) * len[1] + dot3(v[1], v[2]) * len[0];
     total += 2 * std::atan2(det, den);
   }
   return total / (4 * 3.14159265358979323846);
@@ -412,8 +391,7 @@ void Builder::orient_outwards() {
       return sum;
     });
     if (sign[c] == 0)
-      fail(InputErrorKind::zero_volume,
-           "the closed surface through " + tri_name(shell[0]) + " encloses zero volume");
+      fail(InputErrorKind::zero_volume, "the closed surface through " + tri_name(shell[0]) + " encloses zero volume");
   }
   // A shell inside an odd number of others bounds a cavity: it must face
   // inwards (negative volume); the others outwards. Shells do not intersect
@@ -454,18 +432,16 @@ void Builder::orient_outwards() {
     }
   }
   if (flipped > 0) {
-    warnings_.push_back(outer_inwards && k == 1
-                            ? "the surface was oriented inwards; all faces were reversed"
-                            : std::to_string(flipped) +
-                                  " triangle(s) of closed surfaces oriented the wrong way "
-                                  "(inwards, or outwards around a cavity) were reversed");
+    warnings_.push_back(outer_inwards && k == 1 ? "the surface was oriented inwards; all faces were reversed"
+                                                : std::to_string(flipped) +
+                                                      " triangle(s) of closed surfaces oriented the wrong way "
+                                                      "(inwards, or outwards around a cavity) were reversed");
   }
   // Input faces that now run the other way (their triangles turn together).
   std::vector<char> face_reversed(faces_.size(), 0);
   for (std::size_t t = 0; t < tris_.size(); ++t)
     if (reversed_[t]) face_reversed[tri_face_[t]] = 1;
-  rep_.faces_flipped =
-      static_cast<std::size_t>(std::count(face_reversed.begin(), face_reversed.end(), 1));
+  rep_.faces_flipped = static_cast<std::size_t>(std::count(face_reversed.begin(), face_reversed.end(), 1));
 }
 
 std::vector<PlcFacet> Builder::merge_coplanar() {
@@ -481,8 +457,8 @@ std::vector<PlcFacet> Builder::merge_coplanar() {
         if (v != T[0] && v != T[1] && v != T[2]) w = v;
       // Consistently oriented and not folded (checked before): coplanar
       // neighbours face the same way.
-      if (CGAL::orientation(to_cgal(pts_[T[0]]), to_cgal(pts_[T[1]]), to_cgal(pts_[T[2]]),
-                            to_cgal(pts_[w])) == CGAL::COPLANAR)
+      if (CGAL::orientation(to_cgal(pts_[T[0]]), to_cgal(pts_[T[1]]), to_cgal(pts_[T[2]]), to_cgal(pts_[w])) ==
+          CGAL::COPLANAR)
         uf.unite(static_cast<int>(t), o);
     }
   std::vector<int> facet_of(n, -1);
@@ -510,8 +486,7 @@ std::vector<PlcFacet> Builder::merge_coplanar() {
       tris.push_back(tris_[t]);
     }
     std::sort(F.source_faces.begin(), F.source_faces.end());
-    F.source_faces.erase(std::unique(F.source_faces.begin(), F.source_faces.end()),
-                         F.source_faces.end());
+    F.source_faces.erase(std::unique(F.source_faces.begin(), F.source_faces.end()), F.source_faces.end());
     F.normal = validation::unit_area_vector(pts_, tris);
     for (int t0 : members[f])
       for (int k0 = 0; k0 < 3; ++k0) {
@@ -531,16 +506,14 @@ std::vector<PlcFacet> Builder::merge_coplanar() {
             kk = corner_of(tris_[o], v);  // side v -> next in o
             tt = o;
             if (++guard > 4 * n + 8)
-              fail(InputErrorKind::non_manifold_vertex, "cannot trace the boundary around " +
-                                                            vertex_name(v));
+              fail(InputErrorKind::non_manifold_vertex, "cannot trace the boundary around " + vertex_name(v));
           }
           t = tt;
           k = kk;
         }
         if (loop.size() < 3)
           fail(InputErrorKind::self_intersection,
-               "a facet boundary made of coplanar faces around " + tri_name(t0) +
-                   " has fewer than 3 vertices");
+               "a facet boundary made of coplanar faces around " + tri_name(t0) + " has fewer than 3 vertices");
         F.loops.push_back(std::move(loop));
       }
     // The lexicographically smallest vertex of a planar region is on its outer
@@ -576,8 +549,7 @@ PLC Builder::finish(std::vector<PlcFacet> facets) {
     auto& a = adj[v];
     std::sort(a.begin(), a.end());
     a.erase(std::unique(a.begin(), a.end()), a.end());
-    if (a.size() == 2 &&
-        CGAL::collinear(to_cgal(pts_[a[0]]), to_cgal(pts_[v]), to_cgal(pts_[a[1]]))) {
+    if (a.size() == 2 && CGAL::collinear(to_cgal(pts_[a[0]]), to_cgal(pts_[v]), to_cgal(pts_[a[1]]))) {
       drop[v] = 1;
       ++in_edge;
     }
@@ -586,8 +558,7 @@ PLC Builder::finish(std::vector<PlcFacet> facets) {
   PLC plc;
   for (auto& F : facets)
     for (auto& loop : F.loops) {
-      loop.erase(std::remove_if(loop.begin(), loop.end(), [&](int v) { return drop[v] != 0; }),
-                 loop.end());
+      loop.erase(std::remove_if(loop.begin(), loop.end(), [&](int v) { return drop[v] != 0; }), loop.end());
       for (int v : loop) newid[v] = 0;
     }
   for (std::size_t v = 0; v < pts_.size(); ++v)
@@ -601,8 +572,8 @@ PLC Builder::finish(std::vector<PlcFacet> facets) {
       for (int& v : loop) v = newid[v];
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const int a = loop[i], b = loop[(i + 1) % loop.size()];
-        auto [it, fresh] = edge_index.emplace(std::make_pair(std::min(a, b), std::max(a, b)),
-                                              static_cast<int>(plc.edges.size()));
+        auto [it, fresh] =
+            edge_index.emplace(std::make_pair(std::min(a, b), std::max(a, b)), static_cast<int>(plc.edges.size()));
         if (fresh) {
           PlcEdge e;
           e.a = std::min(a, b);
@@ -613,24 +584,22 @@ PLC Builder::finish(std::vector<PlcFacet> facets) {
         // facets[0] runs a -> b (a < b) in its loop, facets[1] runs b -> a.
         int& slot = e.facets[a < b ? 0 : 1];
         if (slot >= 0)
-          fail(InputErrorKind::self_intersection,
-               "the edge from " + coords(plc.vertices[e.a]) + " to " + coords(plc.vertices[e.b]) +
-                   " is traversed twice the same way by the facet boundaries");
+          fail(InputErrorKind::self_intersection, "the edge from " + coords(plc.vertices[e.a]) + " to " +
+                                                      coords(plc.vertices[e.b]) +
+                                                      " is traversed twice the same way by the facet boundaries");
         slot = static_cast<int>(f);
       }
     }
   for (const auto& e : plc.edges)
     if (e.facets[0] < 0 || e.facets[1] < 0)
       fail(InputErrorKind::open_boundary, "the edge from " + coords(plc.vertices[e.a]) + " to " +
-                                              coords(plc.vertices[e.b]) +
-                                              " bounds only one facet");
+                                              coords(plc.vertices[e.b]) + " bounds only one facet");
   plc.facets = std::move(facets);
   rep_.facets = plc.facets.size();
   rep_.edges = plc.edges.size();
   rep_.vertices_removed = pts_.size() - plc.vertices.size();
   if (rep_.vertices_removed > 0)
-    warnings_.push_back(std::to_string(rep_.vertices_removed) +
-                        " vertex(es) inside a facet or an edge were removed (" +
+    warnings_.push_back(std::to_string(rep_.vertices_removed) + " vertex(es) inside a facet or an edge were removed (" +
                         std::to_string(in_edge) + " inside an edge)");
   return plc;
 }

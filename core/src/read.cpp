@@ -44,8 +44,8 @@ PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimit
   // comments, is an OFF keyword; ASCII STL iff it is `solid`.
   std::size_t i = utf8_bom_length(data, size);
   for (;;) {
-    while (i < size && (data[i] == ' ' || data[i] == '\t' || data[i] == '\n' || data[i] == '\r' ||
-                        data[i] == '\f' || data[i] == '\v'))
+    while (i < size && (data[i] == ' ' || data[i] == '\t' || data[i] == '\n' || data[i] == '\r' || data[i] == '\f' ||
+                        data[i] == '\v'))
       ++i;
     if (i < size && data[i] == '#') {
       while (i < size && data[i] != '\n' && data[i] != '\r') ++i;
@@ -54,8 +54,8 @@ PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimit
     break;
   }
   std::size_t j = i;
-  while (j < size && j - i < 16 && data[j] != ' ' && data[j] != '\t' && data[j] != '\n' &&
-         data[j] != '\r' && data[j] != '#')
+  while (j < size && j - i < 16 && data[j] != ' ' && data[j] != '\t' && data[j] != '\n' && data[j] != '\r' &&
+         data[j] != '#')
     ++j;
   if (j > i && is_off_keyword(std::string(data + i, j - i))) return read_off(data, size, limits);
   if (starts_with_solid(data, size)) return read_stl(data, size, limits);
@@ -63,8 +63,7 @@ PolygonSoup read_polyhedron(const char* data, std::size_t size, const InputLimit
 }
 
 std::size_t utf8_bom_length(const char* data, std::size_t size) {
-  return size >= 3 && static_cast<unsigned char>(data[0]) == 0xef &&
-                 static_cast<unsigned char>(data[1]) == 0xbb &&
+  return size >= 3 && static_cast<unsigned char>(data[0]) == 0xef && static_cast<unsigned char>(data[1]) == 0xbb &&
                  static_cast<unsigned char>(data[2]) == 0xbf
              ? 3
              : 0;
@@ -72,8 +71,8 @@ std::size_t utf8_bom_length(const char* data, std::size_t size) {
 
 std::uint64_t binary_stl_size(const char* data) {
   const auto* b = reinterpret_cast<const unsigned char*>(data + 80);
-  const std::uint64_t n = std::uint64_t(b[0]) | (std::uint64_t(b[1]) << 8) |
-                          (std::uint64_t(b[2]) << 16) | (std::uint64_t(b[3]) << 24);
+  const std::uint64_t n =
+      std::uint64_t(b[0]) | (std::uint64_t(b[1]) << 8) | (std::uint64_t(b[2]) << 16) | (std::uint64_t(b[3]) << 24);
   return 84 + 50 * n;
 }
 
@@ -87,15 +86,13 @@ bool starts_with_solid(const char* data, std::size_t size) {
 }
 
 void throw_unknown_format(const char* data, std::size_t size, const char* what) {
-  std::string seen = "not " + std::string(what) + ": it starts with '" + escape_bytes(data, size, 24) +
-                     "' (" + std::to_string(size) + " bytes): no OFF header, no 'solid', and ";
-  if (size < 84)
-    throw InputError(InputErrorKind::truncated,
-                     seen + "shorter than the 84-byte header of a binary STL");
+  std::string seen = "not " + std::string(what) + ": it starts with '" + escape_bytes(data, size, 24) + "' (" +
+                     std::to_string(size) + " bytes): no OFF header, no 'solid', and ";
+  if (size < 84) throw InputError(InputErrorKind::truncated, seen + "shorter than the 84-byte header of a binary STL");
   const std::uint64_t n = (binary_stl_size(data) - 84) / 50;
-  throw InputError(InputErrorKind::syntax,
-                   seen + "not a binary STL, whose header declaring " + std::to_string(n) +
-                       " triangles would make it " + std::to_string(84 + 50 * n) + " bytes long");
+  throw InputError(InputErrorKind::syntax, seen + "not a binary STL, whose header declaring " + std::to_string(n) +
+                                               " triangles would make it " + std::to_string(84 + 50 * n) +
+                                               " bytes long");
 }
 
 PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& limits) {
@@ -107,13 +104,11 @@ PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& lim
   const std::streamoff end = in.tellg();
   if (end < 0) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
   if (static_cast<unsigned long long>(end) > limits.max_bytes)
-    throw InputError(InputErrorKind::too_large,
-                     "'" + path + "' has " + std::to_string(end) + " bytes, beyond the limit of " +
-                         std::to_string(limits.max_bytes));
+    throw InputError(InputErrorKind::too_large, "'" + path + "' has " + std::to_string(end) +
+                                                    " bytes, beyond the limit of " + std::to_string(limits.max_bytes));
   std::string bytes(static_cast<std::size_t>(end), '\0');
   in.seekg(0);
-  if (end > 0 && !in.read(&bytes[0], end))
-    throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
+  if (end > 0 && !in.read(&bytes[0], end)) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
   try {
     return read_polyhedron(bytes.data(), bytes.size(), limits);
   } catch (const InputError& e) {

@@ -47,9 +47,7 @@ void write_plc_counts(JsonWriter& j, const PLC& plc) {
   j.field("facets", plc.facets.size()).field("holes", holes);
 }
 
-void write_point(JsonWriter& j, const Point3& p) {
-  j.begin_array().value(p[0]).value(p[1]).value(p[2]).end_array();
-}
+void write_point(JsonWriter& j, const Point3& p) { j.begin_array().value(p[0]).value(p[1]).value(p[2]).end_array(); }
 
 // The coordinates of the sharp elements (paper, section 2), so that a reader
 // (the web page) can mark them without a PLC of its own: "sharp_vertex_points"

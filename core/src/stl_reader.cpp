@@ -38,8 +38,7 @@ class CornerMerger {
 };
 
 std::uint32_t read_u32(const unsigned char* b) {
-  return std::uint32_t(b[0]) | (std::uint32_t(b[1]) << 8) | (std::uint32_t(b[2]) << 16) |
-         (std::uint32_t(b[3]) << 24);
+  return std::uint32_t(b[0]) | (std::uint32_t(b[1]) << 8) | (std::uint32_t(b[2]) << 16) | (std::uint32_t(b[3]) << 24);
 }
 
 float read_f32(const unsigned char* b) {
@@ -49,12 +48,10 @@ float read_f32(const unsigned char* b) {
   return f;
 }
 
-PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64_t n,
-                        const InputLimits& limits) {
+PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64_t n, const InputLimits& limits) {
   if (n > limits.max_faces)
-    throw InputError(InputErrorKind::too_large,
-                     "binary STL: " + std::to_string(n) + " triangles exceed the limit of " +
-                         std::to_string(limits.max_faces));
+    throw InputError(InputErrorKind::too_large, "binary STL: " + std::to_string(n) + " triangles exceed the limit of " +
+                                                    std::to_string(limits.max_faces));
   if (n == 0) throw InputError(InputErrorKind::empty, "binary STL: the header declares no triangles");
   (void)size;  // == 84 + 50 n: read_stl decides binary by that alone
   PolygonSoup soup;
@@ -69,9 +66,8 @@ PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64
       for (int k = 0; k < 3; ++k) {
         p[k] = static_cast<double>(read_f32(rec + 12 + 12 * c + 4 * k));
         if (!std::isfinite(p[k]))
-          throw InputError(InputErrorKind::non_finite,
-                           "binary STL: triangle " + std::to_string(t) + ", corner " +
-                               std::to_string(c) + " has a non-finite coordinate");
+          throw InputError(InputErrorKind::non_finite, "binary STL: triangle " + std::to_string(t) + ", corner " +
+                                                           std::to_string(c) + " has a non-finite coordinate");
       }
       face[c] = merger.index(p);
     }
@@ -87,8 +83,7 @@ PolygonSoup read_binary(const unsigned char* data, std::size_t size, std::uint64
 /// LF, CRLF or a lone CR); a UTF-8 byte order mark at the start is skipped.
 class StlScanner {
  public:
-  StlScanner(const char* data, std::size_t size)
-      : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
+  StlScanner(const char* data, std::size_t size) : p_(data + utf8_bom_length(data, size)), end_(data + size) {}
   bool next(std::string& token, long& line) {
     while (p_ < end_ && std::isspace(static_cast<unsigned char>(*p_))) {
       if (*p_ == '\n' || (*p_ == '\r' && (p_ + 1 == end_ || p_[1] != '\n'))) ++line_;
@@ -125,14 +120,12 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
     throw InputError(kind, "ASCII STL line " + std::to_string(at) + ": " + what);
   };
   auto need = [&](const char* what) {
-    if (!in.next(tok, line))
-      fail(InputErrorKind::truncated, in.line(), std::string("the file ends before ") + what);
+    if (!in.next(tok, line)) fail(InputErrorKind::truncated, in.line(), std::string("the file ends before ") + what);
   };
   auto expect = [&](const char* word) {
     need((std::string("'") + word + "'").c_str());
     if (!same_word(tok, word))
-      fail(InputErrorKind::syntax, line,
-           std::string("expected '") + word + "', found '" + escape_bytes(tok) + "'");
+      fail(InputErrorKind::syntax, line, std::string("expected '") + word + "', found '" + escape_bytes(tok) + "'");
   };
   auto number = [&](const char* what, double& x) {
     need(what);
@@ -147,8 +140,7 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
   CornerMerger merger(soup);
   if (!in.next(tok, line)) throw InputError(InputErrorKind::empty, "STL: the file is empty");
   if (!same_word(tok, "solid"))
-    fail(InputErrorKind::syntax, line,
-         "expected 'solid' (or a binary STL), found '" + escape_bytes(tok) + "'");
+    fail(InputErrorKind::syntax, line, "expected 'solid' (or a binary STL), found '" + escape_bytes(tok) + "'");
   // The solid's name: the rest of its line, up to a `facet` or `endsolid`
   // keyword (some writers put a whole STL on one line).
   auto skip_name = [&] {
@@ -157,8 +149,7 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
       StlScanner ahead = in;
       std::string t;
       long l = 0;
-      if (!ahead.next(t, l) || l != solid_line || same_word(t, "facet") || same_word(t, "endsolid"))
-        return;
+      if (!ahead.next(t, l) || l != solid_line || same_word(t, "facet") || same_word(t, "endsolid")) return;
       in = ahead;
     }
   };
@@ -190,8 +181,7 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
       continue;
     }
     if (!same_word(tok, "facet"))
-      fail(InputErrorKind::syntax, line,
-           "expected 'facet' or 'endsolid', found '" + escape_bytes(tok) + "'");
+      fail(InputErrorKind::syntax, line, "expected 'facet' or 'endsolid', found '" + escape_bytes(tok) + "'");
     const long facet_line = line;
     expect("normal");
     // The normal is not used: its three components may be anything
@@ -205,27 +195,24 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
       need("'endloop'");
       if (same_word(tok, "endloop")) break;
       if (!same_word(tok, "vertex"))
-        fail(InputErrorKind::syntax, line,
-             "expected 'vertex' or 'endloop', found '" + escape_bytes(tok) + "'");
+        fail(InputErrorKind::syntax, line, "expected 'vertex' or 'endloop', found '" + escape_bytes(tok) + "'");
       if (face.size() == 3)
-        fail(InputErrorKind::syntax, line,
-             "triangle " + std::to_string(soup.faces.size()) +
-                 " has a fourth 'vertex': an STL facet has exactly three");
+        fail(
+            InputErrorKind::syntax, line,
+            "triangle " + std::to_string(soup.faces.size()) + " has a fourth 'vertex': an STL facet has exactly three");
       Point3 p;
       for (int k = 0; k < 3; ++k) {
         number("vertex coordinate", p[k]);
         if (!std::isfinite(p[k]))
           fail(InputErrorKind::non_finite, line,
-               "corner " + std::to_string(face.size()) + " of triangle " +
-                   std::to_string(soup.faces.size()) + " has a non-finite coordinate '" +
-                   escape_bytes(tok) + "'");
+               "corner " + std::to_string(face.size()) + " of triangle " + std::to_string(soup.faces.size()) +
+                   " has a non-finite coordinate '" + escape_bytes(tok) + "'");
       }
       face.push_back(merger.index(p));
     }
     if (face.size() < 3)
       fail(InputErrorKind::syntax, line,
-           "triangle " + std::to_string(soup.faces.size()) + " has only " +
-               std::to_string(face.size()) + " vertices");
+           "triangle " + std::to_string(soup.faces.size()) + " has only " + std::to_string(face.size()) + " vertices");
     expect("endfacet");
     if (soup.faces.size() >= limits.max_faces)
       fail(InputErrorKind::too_large, line, "more than " + std::to_string(limits.max_faces) + " triangles");
@@ -243,14 +230,12 @@ PolygonSoup read_ascii(const char* data, std::size_t size, const InputLimits& li
 PolygonSoup read_stl(const char* data, std::size_t size, const InputLimits& limits) {
   if (size > limits.max_bytes)
     throw InputError(InputErrorKind::too_large,
-                     "STL: " + std::to_string(size) + " bytes exceed the limit of " +
-                         std::to_string(limits.max_bytes));
+                     "STL: " + std::to_string(size) + " bytes exceed the limit of " + std::to_string(limits.max_bytes));
   if (size == 0) throw InputError(InputErrorKind::empty, "STL: the file is empty");
   const auto* bytes = reinterpret_cast<const unsigned char*>(data);
   // Binary iff the size matches the triangle count of the header exactly
   // (see input.h: no text has such a size); ASCII iff it starts with solid.
-  if (size >= 84 && binary_stl_size(data) == size)
-    return read_binary(bytes, size, read_u32(bytes + 80), limits);
+  if (size >= 84 && binary_stl_size(data) == size) return read_binary(bytes, size, read_u32(bytes + 80), limits);
   if (starts_with_solid(data, size)) return read_ascii(data, size, limits);
   throw_unknown_format(data, size, "an STL file");
 }

@@ -36,9 +36,7 @@ Point3 normalized(Point3 v) {
 }
 
 /// Exact orientation of the projected points: > 0 for a left turn.
-int orient2(const P2& a, const P2& b, const P2& c) {
-  return static_cast<int>(CGAL::orientation(a, b, c));
-}
+int orient2(const P2& a, const P2& b, const P2& c) { return static_cast<int>(CGAL::orientation(a, b, c)); }
 
 }  // namespace
 
@@ -47,8 +45,7 @@ double power_of_two_scale(double big) {
   return std::ldexp(1.0, std::min(-std::ilogb(big), 1022));
 }
 
-Point3 exact_unit_area_vector(const std::vector<Point3>& pts,
-                              const std::vector<std::array<int, 3>>& tris) {
+Point3 exact_unit_area_vector(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris) {
   using MP = CGAL::MP_Float;  // exact for +, - and * on doubles
   std::array<MP, 3> sum{{MP(0), MP(0), MP(0)}};
   for (const auto& t : tris) {
@@ -80,8 +77,7 @@ Point3 exact_unit_area_vector(const std::vector<Point3>& pts,
   return normalized(r);
 }
 
-Point3 unit_area_vector(const std::vector<Point3>& pts,
-                        const std::vector<std::array<int, 3>>& tris) {
+Point3 unit_area_vector(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris) {
   double big = 0;
   for (const auto& t : tris)
     for (int v : t)
@@ -217,8 +213,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
     for (int k = 0; k < 2; ++k) {
       const double extent = hi[k] - lo[k];
       // An extent that is 0 or overflows: one column (sound, only slower).
-      cell_scale[k] = extent > 0 && std::isfinite(extent) && std::isfinite(cells / extent)
-                          ? cells / extent : 0;
+      cell_scale[k] = extent > 0 && std::isfinite(extent) && std::isfinite(cells / extent) ? cells / extent : 0;
     }
     grid.assign(static_cast<std::size_t>(cells) * cells, {});
     for (int r : reflex) insert(r);
@@ -231,12 +226,11 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
   auto is_ear = [&](int i) {
     --budget;
     if (budget < 0)
-      throw InputError(InputErrorKind::too_large,
-                       "a polygon of " + std::to_string(n) + " vertices (" +
-                           std::to_string(reflex.size()) +
-                           " of them reflex) is too complex to triangulate: beyond the ear "
-                           "clipping's budget of " +
-                           std::to_string(kMaxEarTests) + " ear-test steps per polygon");
+      throw InputError(InputErrorKind::too_large, "a polygon of " + std::to_string(n) + " vertices (" +
+                                                      std::to_string(reflex.size()) +
+                                                      " of them reflex) is too complex to triangulate: beyond the ear "
+                                                      "clipping's budget of " +
+                                                      std::to_string(kMaxEarTests) + " ear-test steps per polygon");
     if (!convex(i)) return false;
     if (reflex.empty()) return true;
     const int a = prev[i], c = next[i];
@@ -252,8 +246,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
         for (int r : here) {
           if (removed[r] || !is_reflex[r] || r == a || r == c) continue;
           // Inside or on the closed triangle (a, i, c), counter-clockwise.
-          if (orient2(q[a], q[i], q[r]) >= 0 && orient2(q[i], q[c], q[r]) >= 0 &&
-              orient2(q[c], q[a], q[r]) >= 0)
+          if (orient2(q[a], q[i], q[r]) >= 0 && orient2(q[i], q[c], q[r]) >= 0 && orient2(q[c], q[a], q[r]) >= 0)
             return false;
         }
       }
@@ -308,13 +301,10 @@ struct PairTester {
   const std::function<std::string(int)>& describe;
 
   cgal::Point P(int i) const { return cgal::to_cgal(pts[i]); }
-  cgal::Triangle T(int t) const {
-    return cgal::Triangle(P(tris[t][0]), P(tris[t][1]), P(tris[t][2]));
-  }
+  cgal::Triangle T(int t) const { return cgal::Triangle(P(tris[t][0]), P(tris[t][1]), P(tris[t][2])); }
 
   [[noreturn]] void report(int s, int t, const std::string& how) const {
-    throw InputError(InputErrorKind::self_intersection,
-                     describe(s) + " and " + describe(t) + " " + how);
+    throw InputError(InputErrorKind::self_intersection, describe(s) + " and " + describe(t) + " " + how);
   }
 
   /// Closed wedge at apex u spanned by rays ua, ub (coplanar, angle < 180)
@@ -355,8 +345,8 @@ struct PairTester {
       if (CGAL::orientation(P(u), P(v), P(wa), P(wb)) == CGAL::COPLANAR &&
           CGAL::coplanar_orientation(P(u), P(v), P(wa), P(wb)) == CGAL::POSITIVE)
         report(s, t,
-               "overlap: they are coplanar and folded onto each other across their common edge " +
-                   coords(pts[u]) + " - " + coords(pts[v]));
+               "overlap: they are coplanar and folded onto each other across their common edge " + coords(pts[u]) +
+                   " - " + coords(pts[v]));
       return;
     }
     // One common vertex u = A[ia] = B[ib]; the far edges are ab and cd.
@@ -369,30 +359,26 @@ struct PairTester {
     if (coplanar) {
       // Two convex wedges at u overlap beyond u iff a bounding ray of one lies
       // in the other.
-      if (ray_in_wedge(u, a, b, c) || ray_in_wedge(u, a, b, d) || ray_in_wedge(u, c, d, a) ||
-          ray_in_wedge(u, c, d, b))
+      if (ray_in_wedge(u, a, b, c) || ray_in_wedge(u, a, b, d) || ray_in_wedge(u, c, d, a) || ray_in_wedge(u, c, d, b))
         report(s, t, where() + " (coplanar overlap)");
       return;
     }
     // Not coplanar: the intersection is a segment from u along the line of the
     // two planes; it goes beyond u iff a far edge meets the other triangle.
-    if (CGAL::do_intersect(cgal::Segment(P(a), P(b)), T(t)) ||
-        CGAL::do_intersect(cgal::Segment(P(c), P(d)), T(s)))
+    if (CGAL::do_intersect(cgal::Segment(P(a), P(b)), T(t)) || CGAL::do_intersect(cgal::Segment(P(c), P(d)), T(s)))
       report(s, t, where());
   }
 };
 
 }  // namespace
 
-void check_self_intersections(const std::vector<Point3>& pts,
-                              const std::vector<std::array<int, 3>>& tris,
+void check_self_intersections(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris,
                               const std::function<std::string(int)>& describe) {
   // Bounded work: so many overlapping boxes only come from pathological
   // inputs (huge fans of slivers, a vertex of very high degree); reject them
   // rather than run for hours (README, Limits).
   const long long kBudget = kMaxOverlappingPairs;
-  const std::string budget_name = "the self-intersection test's budget of " +
-                                  std::to_string(kBudget) +
+  const std::string budget_name = "the self-intersection test's budget of " + std::to_string(kBudget) +
                                   " pairs of triangles with overlapping bounding boxes";
   // Triangles at a common vertex always have overlapping boxes: count those
   // pairs first, so that a vertex of huge degree is refused at once.
@@ -407,10 +393,10 @@ void check_self_intersections(const std::vector<Point3>& pts,
       if (degree[v] > worst) worst = degree[v], worst_vertex = v;
     }
     if (pairs > kBudget)
-      throw InputError(InputErrorKind::too_large,
-                       "the triangles at common vertices alone make " + std::to_string(pairs) +
-                           " pairs (the vertex " + coords(pts[worst_vertex]) + " is in " +
-                           std::to_string(worst) + " triangles), beyond " + budget_name);
+      throw InputError(InputErrorKind::too_large, "the triangles at common vertices alone make " +
+                                                      std::to_string(pairs) + " pairs (the vertex " +
+                                                      coords(pts[worst_vertex]) + " is in " + std::to_string(worst) +
+                                                      " triangles), beyond " + budget_name);
   }
   std::vector<Box> boxes;
   boxes.reserve(tris.size());
@@ -429,8 +415,10 @@ void check_self_intersections(const std::vector<Point3>& pts,
   long long budget = kBudget;
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
     if (--budget < 0)
-      throw InputError(InputErrorKind::too_large, "more pairs of triangles to check for "
-                                                  "self-intersections than " + budget_name);
+      throw InputError(InputErrorKind::too_large,
+                       "more pairs of triangles to check for "
+                       "self-intersections than " +
+                           budget_name);
     tester.test(x.info(), y.info());
   });
 }

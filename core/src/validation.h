@@ -32,8 +32,7 @@ double power_of_two_scale(double big);
 /// (b - a) x (c - a), i.e. twice their vector area, with rounded components;
 /// (0, 0, 0) when the sum is exactly zero. Right whatever the magnitudes, also
 /// where rounded cross products underflow or overflow (slower than those).
-Point3 exact_unit_area_vector(const std::vector<Point3>& pts,
-                              const std::vector<std::array<int, 3>>& tris);
+Point3 exact_unit_area_vector(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris);
 
 /// The same vector, each component within about 1e-7 of the exact unit
 /// vector's: from rounded arithmetic on the coordinates scaled by
@@ -41,8 +40,7 @@ Point3 exact_unit_area_vector(const std::vector<Point3>& pts,
 /// shows it that close, else from exact_unit_area_vector (thin triangles of
 /// huge coordinates, products that underflow). For a facet (coplanar
 /// triangles turning the same way) this is its unit normal.
-Point3 unit_area_vector(const std::vector<Point3>& pts,
-                        const std::vector<std::array<int, 3>>& tris);
+Point3 unit_area_vector(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris);
 
 /// Triangulates the polygon `poly` (indices into `pts`, at least 3 distinct
 /// points, not all collinear) by ear clipping in a coordinate plane, the one
@@ -68,8 +66,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
 /// Throws InputError(too_large) beyond kMaxOverlappingPairs candidate pairs,
 /// at once (before any box is built) when the pairs of triangles at common
 /// vertices, which always overlap, are already more.
-void check_self_intersections(const std::vector<Point3>& pts,
-                              const std::vector<std::array<int, 3>>& tris,
+void check_self_intersections(const std::vector<Point3>& pts, const std::vector<std::array<int, 3>>& tris,
                               const std::function<std::string(int)>& describe);
 
 /// "(x, y, z)" with 17 significant digits: a point as error messages name it.

@@ -13,8 +13,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
-    const wqmesh::PolygonSoup soup =
-        wqmesh::read_polyhedron(reinterpret_cast<const char*>(data), size);
+    const wqmesh::PolygonSoup soup = wqmesh::read_polyhedron(reinterpret_cast<const char*>(data), size);
     wqmesh::fuzz::check_soup(soup, soup.format == "OFF" ? 0 : 3);
     wqmesh::Warnings warnings;
     wqmesh::MergeReport report;

@@ -30,8 +30,7 @@ inline void check_soup(const PolygonSoup& soup, std::size_t min_face) {
   for (const auto& face : soup.faces) {
     require(face.size() >= min_face, "every face has at least the vertices the format wants");
     for (int v : face)
-      require(v >= 0 && static_cast<std::size_t>(v) < soup.points.size(),
-              "every face index refers to a point");
+      require(v >= 0 && static_cast<std::size_t>(v) < soup.points.size(), "every face index refers to a point");
   }
   for (const Point3& p : soup.points)
     for (double x : p) require(std::isfinite(x), "every coordinate is finite");

@@ -116,7 +116,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
     off += line;
   }
-  for (const auto& f : faces) off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+  for (const auto& f : faces)
+    off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
   const wqmesh::CheckResult c = wqmesh::check_polyhedron(off.data(), off.size());
   if (!c.valid) {
     std::fprintf(stderr, "wqmesh fuzz: a star-shaped polyhedron was rejected: %s: %s\n%s", c.error_kind.c_str(),
@@ -137,8 +138,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  &d = r.mesh.vertices[t[3]];
     const Point3 u{{b[0] - a[0], b[1] - a[1], b[2] - a[2]}}, v{{cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]}},
         w{{d[0] - a[0], d[1] - a[1], d[2] - a[2]}};
-    const double o6 = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-                      u[2] * (v[0] * w[1] - v[1] * w[0]);
+    const double o6 =
+        u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
     require(CGAL::orientation(K::Point_3(a[0], a[1], a[2]), K::Point_3(b[0], b[1], b[2]),
                               K::Point_3(cc[0], cc[1], cc[2]), K::Point_3(d[0], d[1], d[2])) == CGAL::POSITIVE,
             "every tet is positively oriented (exact)");

@@ -76,8 +76,7 @@ Analysis analyze(const PLC& plc, const AnalysisOptions& options = {});
 /// the projection of u falls inside the polygon (holes excluded), else the
 /// distance to its boundary. Uses a bounding volume hierarchy over the input
 /// elements, so it runs in about O(n log n) for n elements.
-std::vector<double> local_feature_sizes(const PLC& plc, const std::vector<int>& vertices,
-                                        const Box& bounding_box);
+std::vector<double> local_feature_sizes(const PLC& plc, const std::vector<int>& vertices, const Box& bounding_box);
 
 class JsonWriter;
 /// Writes the analysis as one JSON object value (the caller has written the

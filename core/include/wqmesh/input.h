@@ -17,7 +17,7 @@ struct InputLimits {
   std::size_t max_bytes = std::size_t(1) << 30;  ///< 1 GiB of file
   std::size_t max_points = 5'000'000;
   std::size_t max_faces = 10'000'000;
-  std::size_t max_face_size = 100'000;           ///< vertices of one polygon
+  std::size_t max_face_size = 100'000;  ///< vertices of one polygon
 };
 
 /// Reads an OFF file (ASCII; headers OFF, COFF, NOFF, CNOFF, STOFF...; `#`
@@ -73,12 +73,12 @@ PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& lim
 
 /// What merging did, for the report: counts before (as read) and after (PLC).
 struct MergeReport {
-  std::size_t points_read = 0, vertices = 0;    ///< after identical points merge
+  std::size_t points_read = 0, vertices = 0;  ///< after identical points merge
   std::size_t faces_read = 0, facets = 0;
-  std::size_t edges_before = 0, edges = 0;      ///< polygon edges vs PLC edges
-  std::size_t vertices_removed = 0;  ///< inside a facet or a collinear chain
-  std::size_t faces_split = 0;       ///< non-planar polygons split in triangles
-  std::size_t faces_flipped = 0;     ///< orientation repaired
+  std::size_t edges_before = 0, edges = 0;  ///< polygon edges vs PLC edges
+  std::size_t vertices_removed = 0;         ///< inside a facet or a collinear chain
+  std::size_t faces_split = 0;              ///< non-planar polygons split in triangles
+  std::size_t faces_flipped = 0;            ///< orientation repaired
 };
 
 /// Validates a polygon soup and builds its PLC (paper, section 2).
