@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "mesh_invariants.h"
+#include "mesher/mesher.h"
 #include "mesher/pump.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/input.h"
@@ -114,8 +115,9 @@ TEST(MesherLarge, StepStopsAtOnceNamingItsNeedleEdges) {
 }
 
 TEST(Mesher, BoxHasNoProtectingBallAndNoViolation) {
-  const Input in = from_off("OFF\n8 6 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n0 0 1\n2 0 1\n2 1 1\n0 1 1\n"
-                            "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+  const Input in = from_off(
+      "OFF\n8 6 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n0 0 1\n2 0 1\n2 1 1\n0 1 1\n"
+      "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
   const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
   expect_invariants("box", in, r);
   EXPECT_TRUE(r.protecting_balls.empty());
@@ -331,8 +333,7 @@ struct Stage {
   MeshOptions options;
   ProgressCallback none;
   mesher::Mesher m;
-  Stage(const Input& input, bool conformed)
-      : in(input), dom(in.plc, in.analysis), m(dom, options, none) {
+  Stage(const Input& input, bool conformed) : in(input), dom(in.plc, in.analysis), m(dom, options, none) {
     m.initialize();
     if (conformed) m.conform();
   }
@@ -397,7 +398,7 @@ TEST(MesherRules, InitializePutsBallPointsAtQuarterLfsOnEveryEdgeOfASharpVertex)
   // The subsegments from a sharp vertex to its ball points are protected.
   const int np = static_cast<int>(dom.p.vertices.size());
   std::size_t protected_count = 0;
-  for (const auto& [k, s] : m.subsegments()) {
+  for (const auto& [k, s] : m.subcomplex().subsegments()) {
     if (s.edge < 0) continue;
     const bool from_sharp_vertex = (s.a < np && dom.sharp_vertex[s.a] && m.vertices()[s.b].ball == s.a) ||
                                    (s.b < np && dom.sharp_vertex[s.b] && m.vertices()[s.a].ball == s.b);
@@ -416,13 +417,13 @@ TEST(MesherRules, SplitePutsTheMidpointOrTheArcMidpoint) {
   mesher::Mesher& m = st.m;
   // A point just beside the midpoint of a non-protected subsegment
   // encroaches it: ENCROACH returns that midpoint (section 4.3, case 2).
-  for (const auto& [k, s] : m.subsegments()) {
+  for (const auto& [k, s] : m.subcomplex().subsegments()) {
     if (s.in_ball || s.sector >= 0) continue;
     const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
     const Point3 mid = mesher::midpoint(a, b);
     Point3 off = cross(sub(b, a), Point3{{0.3, 0.5, 0.7}});
     off = mesher::mul(off, 1e-3 * std::sqrt(mesher::dist2(a, b)) / std::sqrt(dot(off, off)));
-    const mesher::Insertion ins = m.encroach(mesher::add(mid, off), s.a);
+    const mesher::Insertion ins = m.subcomplex().encroach(mesher::add(mid, off), s.a);
     EXPECT_TRUE(ins.has_segment);
     EXPECT_EQ(ins.on, mesher::On::edge);
     EXPECT_EQ(ins.p, mid);
@@ -430,11 +431,11 @@ TEST(MesherRules, SplitePutsTheMidpointOrTheArcMidpoint) {
   }
   // A shield subsegment is split at the midpoint of its arc (SOS): that point
   // is on the sphere of the vertex ball, at equal distance from both ends.
-  for (const auto& [k, s] : m.subsegments()) {
+  for (const auto& [k, s] : m.subcomplex().subsegments()) {
     if (s.sector < 0) continue;
     const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
     const Point3 mid = mesher::midpoint(a, b);
-    const mesher::Insertion ins = m.encroach(mid, s.a);
+    const mesher::Insertion ins = m.subcomplex().encroach(mid, s.a);
     ASSERT_TRUE(ins.has_segment);
     const int u = m.vertices()[s.a].ball;
     ASSERT_GE(u, 0);
@@ -453,9 +454,9 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
   const Input& in = st.in;
   const mesher::Domain& dom = st.dom;
   mesher::Mesher& m = st.m;
-  ASSERT_TRUE(m.conforms());
+  ASSERT_TRUE(m.subcomplex().conforms());
   const auto& tri = m.triangulation();
-  const std::vector<mesher::Subfacet> facets = m.subfacets();
+  const std::vector<mesher::Subfacet> facets = m.subcomplex().subfacets();
   int free_points = 0, split_points = 0;
   for (int i = 1; i < 8; ++i)
     for (int j = 1; j < 8; ++j)
@@ -464,7 +465,7 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
         const int ijk[3] = {i, j, k};
         for (int a = 0; a < 3; ++a) c[a] = dom.box.lo[a] + (dom.box.hi[a] - dom.box.lo[a]) * (ijk[a] + 0.137) / 8.0;
         bool encroaches = false;
-        for (const auto& [key, sg] : m.subsegments()) {
+        for (const auto& [key, sg] : m.subcomplex().subsegments()) {
           if (sg.in_ball) continue;
           const Point3 a = tri.point(sg.a), b = tri.point(sg.b);
           if (mesher::dist2(c, mesher::midpoint(a, b)) <= 0.25 * mesher::dist2(a, b)) encroaches = true;
@@ -474,7 +475,7 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
           const Point3 cc = mesher::circumcenter(tri.point(h.v[0]), tri.point(h.v[1]), tri.point(h.v[2]), r2);
           if (mesher::dist2(c, cc) < r2) encroaches = true;
         }
-        const mesher::Insertion ins = m.encroach(c, 0);
+        const mesher::Insertion ins = m.subcomplex().encroach(c, 0);
         if (encroaches) {
           ++split_points;
           EXPECT_NE(ins.on, mesher::On::free) << "c encroaches a feature but ENCROACH returned it";
@@ -487,7 +488,7 @@ TEST(MesherRules, EncroachAgreesWithABruteForceSearch) {
   EXPECT_GT(free_points, 0);
   EXPECT_GT(split_points, 0);
   std::size_t vertex_balls = 0;
-  for (const ProtectingBall& b : m.protecting_balls()) vertex_balls += b.vertex_ball;
+  for (const ProtectingBall& b : m.balls().all()) vertex_balls += b.vertex_ball;
   EXPECT_EQ(vertex_balls, in.analysis.sharp_vertices.size());
 }
 
@@ -497,12 +498,12 @@ TEST(MesherRules, SharpSubsegmentsGetDoubledDiametricBalls) {
   const mesher::Domain& dom = st.dom;
   mesher::Mesher& m = st.m;
   std::size_t sharp = 0;
-  for (const auto& [k, s] : m.subsegments()) {
+  for (const auto& [k, s] : m.subcomplex().subsegments()) {
     if (!s.sharp) continue;
     ++sharp;
     const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
     bool found = false;
-    for (const ProtectingBall& ball : m.protecting_balls())
+    for (const ProtectingBall& ball : m.balls().all())
       if (!ball.vertex_ball && ball.center == mesher::midpoint(a, b) &&
           std::fabs(ball.radius - std::sqrt(mesher::dist2(a, b))) < 1e-15 * ball.radius)
         found = true;
@@ -531,7 +532,7 @@ TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
   m.initialize();
   m.conform();
   m.refine();
-  mesher::Pump pump(m);
+  mesher::Pump pump = m.make_pump();
   pump.prepare();
   const auto cand = pump.candidates();
   ASSERT_FALSE(cand.empty());
@@ -578,7 +579,7 @@ TEST(MesherRules, Rule6LeavesTetsOnAVertexBallSphereAlone) {
   ProgressCallback none;
   mesher::Mesher m(dom, o, none);
   std::set<std::array<double, 3>> rule6;
-  m.observer = [&](const mesher::Insertion& ins, int rule, int id) {
+  m.inserter().observer = [&](const mesher::Insertion& ins, int rule, int id) {
     if (id >= 0 && rule == 6 && ins.on == mesher::On::free) rule6.insert(ins.p);
   };
   m.initialize();
@@ -588,8 +589,7 @@ TEST(MesherRules, Rule6LeavesTetsOnAVertexBallSphereAlone) {
   std::size_t on_sphere = 0;
   for (const Tet& t : m.triangulation().finite_cells()) {
     const int u = m.vertices()[t[0]].ball;
-    if (u < 0 || m.vertices()[t[1]].ball != u || m.vertices()[t[2]].ball != u || m.vertices()[t[3]].ball != u)
-      continue;
+    if (u < 0 || m.vertices()[t[1]].ball != u || m.vertices()[t[2]].ball != u || m.vertices()[t[3]].ball != u) continue;
     ++on_sphere;
     const auto& tri = m.triangulation();
     double r2;
@@ -651,7 +651,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
     mesher::Mesher m(dom, o, none);
     std::array<int, 8> seen{};
     std::size_t circumcenters = 0, subfacet_centers = 0;
-    m.observer = [&](const mesher::Insertion& ins, int rule, int id) {
+    m.inserter().observer = [&](const mesher::Insertion& ins, int rule, int id) {
       if (id < 0) return;
       ++seen[rule];
       const auto& tri = m.triangulation();
@@ -669,7 +669,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
         return;
       }
       // Not a subsegment split: the point encroaches no subsegment.
-      for (const auto& [k, s] : m.subsegments()) {
+      for (const auto& [k, s] : m.subcomplex().subsegments()) {
         if (s.in_ball || s.a == id || s.b == id) continue;
         const Point3 pa = tri.point(s.a), pb = tri.point(s.b);
         EXPECT_GT(mesher::dist2(ins.p, mesher::midpoint(pa, pb)), 0.25 * mesher::dist2(pa, pb))
@@ -686,7 +686,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
         ++subfacet_centers;
       }
       if (rule == 6 && ins.on == mesher::On::free) {
-        for (const ProtectingBall& b : m.protecting_balls())
+        for (const ProtectingBall& b : m.balls().all())
           EXPECT_GT(mesher::dist2(ins.p, b.center), b.radius * b.radius) << "rule 6 inside a protecting ball";
         // z, the circumcenter of a tet of Del V: its circumball was empty,
         // so its four vertices are the nearest, at the same distance.
@@ -699,7 +699,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
     m.initialize();
     m.conform();
     m.refine();
-    EXPECT_TRUE(m.conforms());
+    EXPECT_TRUE(m.subcomplex().conforms());
     if (file.find("edge_facet") != std::string::npos)
       for (int rule = 1; rule <= 7; ++rule) EXPECT_GT(seen[rule], 0) << "rule " << rule << " inserted nothing";
     EXPECT_GT(circumcenters, 0u);

@@ -81,4 +81,23 @@ TEST(PaperMap, RulesAreNamedInTheRuleEnum) {
   }
 }
 
+TEST(PaperMap, PhasesGetTheirPiecesNotTheMesher) {
+  // No god object (issue 13): each phase is handed the pieces it uses
+  // (mesher.h lists them), so no phase file names class Mesher, and no class
+  // of the mesher reaches into another's private members through `friend`.
+  const std::string dir = std::string(WQMESH_SOURCE_DIR) + "/core/src/mesher/";
+  for (const char* phase :
+       {"initialize.cpp", "conform.cpp", "refine.cpp", "pump.cpp", "pump.h", "extract.cpp", "extract.h", "phases.h",
+        "queues.cpp", "queues.h", "subcomplex.cpp", "subcomplex.h", "work_meter.cpp", "work_meter.h"}) {
+    const std::string source = wqmesh::testing::read_file(dir + phase);
+    ASSERT_FALSE(source.empty()) << dir << phase << " is missing or empty";
+    EXPECT_EQ(source.find("Mesher::"), std::string::npos) << phase << " reaches into class Mesher";
+    EXPECT_EQ(source.find("Mesher&"), std::string::npos) << phase << " is handed the whole Mesher";
+    EXPECT_EQ(source.find("friend "), std::string::npos) << phase << " declares a friend";
+  }
+  for (const char* owner : {"mesher.h", "mesher.cpp", "rules.h", "domain.h", "protecting_balls.h"})
+    EXPECT_EQ(wqmesh::testing::read_file(dir + owner).find("friend "), std::string::npos)
+        << owner << " declares a friend";
+}
+
 }  // namespace

@@ -67,7 +67,7 @@ struct Progress {
 
 /// Called at each phase change and after a bounded amount of work inside
 /// every phase and every long step: at least every 256 steps and every 256
-/// units of work (Mesher::kPollWork; a unit is bounded by the size of a star:
+/// units of work (WorkMeter::kPollWork; a unit is bounded by the size of a star:
 /// see MeshOptions::stall_work), INITIALIZE's insertions and the whole-mesh
 /// scans of rule 7 and PUMP included, so a cancel takes effect within a few
 /// milliseconds of work. Returns false to cancel the run. It may also throw

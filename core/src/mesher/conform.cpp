@@ -5,33 +5,30 @@
 #include <cmath>
 #include <string>
 
-#include "mesher/mesher.h"
+#include "mesher/phases.h"
 
 namespace wqmesh::mesher {
 
-void Mesher::conform() {
-  phase_ = Phase::conform;
-  for (const auto& [k, s] : segs_) queues_.segments.push_back(k);
-  for (const Subfacet& h : subfacets()) queues_.subfacets.push_back(h);
-  std::sort(queues_.segments.begin(), queues_.segments.end());
-  if (!process_queues(false)) return;
+void Conform::run() {
+  queues_.fill(false);
+  if (!queues_.process(ins_)) return;
   if (opt_.max_size > 0 && !split_long_sharp_subsegments()) return;
   // Rule 3 passes until one inserts nothing, at most Caps::kRule3Passes.
   int passes = 0;
-  while (stop_reason_.empty() && passes < Caps::kRule3Passes && rule3_pass()) ++passes;
-  if (passes == Caps::kRule3Passes) ++caps_reached;
+  while (!meter_.stopped() && passes < Caps::kRule3Passes && rule3_pass()) ++passes;
+  if (passes == Caps::kRule3Passes) meter_.cap_reached();
   make_protecting_balls();
 }
 
-std::vector<std::uint64_t> Mesher::sharp_subsegment_keys() const {
+std::vector<std::uint64_t> Conform::sharp_subsegment_keys() const {
   std::vector<std::uint64_t> keys;
-  for (const auto& [k, s] : segs_)
+  for (const auto& [k, s] : sub_.subsegments())
     if (s.sharp) keys.push_back(k);
   std::sort(keys.begin(), keys.end());
   return keys;
 }
 
-bool Mesher::rule3_pass() {
+bool Conform::rule3_pass() {
   // Rule 3: the midpoint of a sharp subsegment s on edge e that encroaches a
   // subsegment or subfacet h, h and e in disjoint elements of P: split h.
   const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
@@ -39,26 +36,26 @@ bool Mesher::rule3_pass() {
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
   for (std::uint64_t k : keys) {
-    step_done();
-    if (!poll(1)) break;
-    const auto it = segs_.find(k);
-    if (it == segs_.end()) continue;
+    meter_.step_done();
+    if (!meter_.poll(1)) break;
+    const auto it = sub_.subsegments().find(k);
+    if (it == sub_.subsegments().end()) continue;
     const Subsegment s = it->second;
     const int ea = dom_.p.edges[s.edge].a, eb = dom_.p.edges[s.edge].b;
     const Point3 m = midpoint(tri_.point(s.a), tri_.point(s.b));
-    encroached_by_point(m, s.a, segs, facets);
+    sub_.encroached_by_point(m, s.a, segs, facets);
     auto disjoint_facet = [&](int f) { return !dom_.facet_has_vertex(f, ea) && !dom_.facet_has_vertex(f, eb); };
     Insertion ins;
     bool found = false;
     for (std::uint64_t g : segs) {
       if (g == k) continue;
-      const Subsegment& gs = segs_.at(g);
+      const Subsegment& gs = sub_.subsegment(g);
       const bool disjoint =
-          gs.sector >= 0 ? disjoint_facet(sectors_[gs.sector].facet)
+          gs.sector >= 0 ? disjoint_facet(sub_.sector(gs.sector).facet)
                          : (gs.edge != s.edge && dom_.p.edges[gs.edge].a != ea && dom_.p.edges[gs.edge].a != eb &&
                             dom_.p.edges[gs.edge].b != ea && dom_.p.edges[gs.edge].b != eb);
       if (disjoint) {
-        ins = splite(gs);
+        ins = sub_.splite(gs);
         found = true;
         break;
       }
@@ -66,20 +63,20 @@ bool Mesher::rule3_pass() {
     if (!found)
       for (const Subfacet& h : facets)
         if (disjoint_facet(h.facet)) {
-          ins = splitf(h);
+          ins = sub_.splitf(h);
           found = true;
           break;
         }
-    if (found && insert(ins, Rule::rule3_split_near_sharp_subsegment) >= 0) {
+    if (found && ins_.insert(ins, Rule::rule3_split_near_sharp_subsegment) >= 0) {
       acted = true;
-      tick();
-      if (!process_queues(false)) break;
+      meter_.tick();
+      if (!queues_.process(ins_)) break;
     }
   }
   return acted;
 }
 
-bool Mesher::split_long_sharp_subsegments() {
+bool Conform::split_long_sharp_subsegments() {
   // Beyond the paper: the size bound max_size of rule 6. Rule 6 never inserts
   // inside a protecting ball, and the ball of a sharp subsegment ab has radius
   // |ab| (make_protecting_balls), so near a long sharp edge the bound would go
@@ -100,29 +97,29 @@ bool Mesher::split_long_sharp_subsegments() {
       throw LoopBoundError("split_long_sharp_subsegments: more than " + std::to_string(kPasses) + " passes");
     again = false;
     std::vector<std::uint64_t> keys;
-    for (const auto& [k, s] : segs_)
+    for (const auto& [k, s] : sub_.subsegments())
       if (s.sharp && dist2(tri_.point(s.a), tri_.point(s.b)) > bound * bound) keys.push_back(k);
     std::sort(keys.begin(), keys.end());
     for (std::uint64_t k : keys) {
-      const auto it = segs_.find(k);
-      if (it == segs_.end()) continue;
+      const auto it = sub_.subsegments().find(k);
+      if (it == sub_.subsegments().end()) continue;
       // Counted with rule 6, whose size bound this serves.
-      if (insert(splite(it->second), Rule::rule6_split_skinny_tet) < 0) continue;
+      if (ins_.insert(sub_.splite(it->second), Rule::rule6_split_skinny_tet) < 0) continue;
       again = true;
-      if (!tick() || !process_queues(false)) return false;
+      if (!meter_.tick() || !queues_.process(ins_)) return false;
     }
   }
-  return stop_reason_.empty();
+  return !meter_.stopped();
 }
 
-void Mesher::make_protecting_balls() {
+void Conform::make_protecting_balls() {
   std::vector<ProtectingBall> balls;
   for (int u = 0; u < static_cast<int>(dom_.p.vertices.size()); ++u)
     if (dom_.ball_radius[u] > 0) balls.push_back({dom_.p.vertices[u], dom_.ball_radius[u], true});
   // At the end of CONFORM, the diametric balls of sharp subsegments doubled.
   const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
   for (std::uint64_t k : keys) {
-    const Subsegment& s = segs_.at(k);
+    const Subsegment& s = sub_.subsegment(k);
     const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);
     balls.push_back({midpoint(a, b), std::sqrt(dist2(a, b)), false});
   }

@@ -9,16 +9,17 @@
 #include <unordered_set>
 
 #include "mesher/classify.h"
-#include "mesher/mesher.h"
+#include "mesher/extract.h"
 
 namespace wqmesh::mesher {
 
-std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph& g, bool scan) {
+std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, const RegularTriangulation::CellGraph& g,
+                                  WorkMeter& meter, bool scan) {
   // Flood fill from the infinite cells; the subfacets of input facets are the
   // walls.
   std::unordered_set<Tri, TriHash> walls;
-  for (const Subfacet& h : subfacets())
-    if (!dom_.is_box_facet(h.facet)) walls.insert(sorted(h.v));
+  for (const Subfacet& h : sub.subfacets())
+    if (!dom.is_box_facet(h.facet)) walls.insert(sorted(h.v));
   // Crossing a wall flips inside and outside (a polyhedron may have several
   // shells). 1 = inside.
   std::vector<char> label(g.cells.size(), 2);  // 2 = unknown
@@ -30,7 +31,7 @@ std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph&
     }
   // Each cell is pushed once (labelled when pushed): at most |cells| pops.
   while (!stack.empty()) {
-    if (scan && !poll(1, false)) return label;
+    if (scan && !meter.poll(1, false)) return label;
     const int c = stack.back();
     stack.pop_back();
     for (int k = 0; k < 4; ++k) {
@@ -45,23 +46,8 @@ std::vector<char> Mesher::interior_labels(const RegularTriangulation::CellGraph&
   // Flat tets lying in an input facet pass the labels on correctly whatever
   // their own label; they belong to neither side and are left out.
   for (std::size_t i = 0; i < g.cells.size(); ++i)
-    if (label[i] == 1 && flat_on_facet(g.cells[i])) label[i] = 0;
+    if (label[i] == 1 && sub.flat_on_facet(g.cells[i])) label[i] = 0;
   return label;
-}
-
-bool Mesher::flat_on_facet(const Tet& t) const {
-  if (std::find(t.begin(), t.end(), kInfinite) != t.end()) return false;
-  std::vector<int> common, fs;
-  facets_of(t[0], common);
-  for (int k = 1; k < 4 && !common.empty(); ++k) {
-    facets_of(t[k], fs);
-    common.erase(std::remove_if(common.begin(), common.end(),
-                                [&](int f) { return std::find(fs.begin(), fs.end(), f) == fs.end(); }),
-                 common.end());
-  }
-  for (int f : common)
-    if (!dom_.is_box_facet(f)) return true;
-  return false;
 }
 
 namespace {
@@ -201,17 +187,17 @@ constexpr long long kRayParityBudget = 400'000'000;
 
 }  // namespace
 
-MeshResult Mesher::extract(bool stoppable) {
+MeshResult Extract::run(bool stoppable) {
   MeshResult r;
-  r.stopped = stop_reason_;
-  r.conforming = conforms();
+  r.stopped = meter_.stop_reason();
+  r.conforming = sub_.conforms();
   r.protecting_balls = balls_.all();
   // Beyond the paper (issue 10, stops that reach every step): a stoppable
   // extraction polls once per vertex, cell or tet it handles.
-  const auto must_stop = [&] { return stoppable && !poll(1, false); };
+  const auto must_stop = [&] { return stoppable && !meter_.poll(1, false); };
   const auto stopped_result = [&] {
     MeshResult s;
-    s.stopped = stop_reason_;
+    s.stopped = meter_.stop_reason();
     s.protecting_balls = balls_.all();
     return s;
   };
@@ -219,15 +205,15 @@ MeshResult Mesher::extract(bool stoppable) {
     std::vector<double> nn(verts_.size());
     for (std::size_t v = 0; v < verts_.size(); ++v) {
       if (must_stop()) return stopped_result();
-      nn[v] = nearest_neighbour(static_cast<int>(v));
+      nn[v] = nearest_neighbour(tri_, static_cast<int>(v));
     }
     nn_.swap(nn);
   }
   // In canonical order, so that the output is the same on every platform.
-  const RegularTriangulation::CellGraph g = canonical(stoppable ? scan_cell_graph() : tri_.cell_graph());
-  if (stoppable && stopped()) return stopped_result();
-  std::vector<char> inside = interior_labels(g, stoppable);
-  if (stoppable && stopped()) return stopped_result();
+  const RegularTriangulation::CellGraph g = canonical(stoppable ? meter_.scan_cell_graph(tri_) : tri_.cell_graph());
+  if (stoppable && meter_.stopped()) return stopped_result();
+  std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, stoppable);
+  if (stoppable && meter_.stopped()) return stopped_result();
   if (!r.conforming) {
     // Beyond the paper: the walls have holes, so the flood fill's labels
     // leak; label each cell by its centroid instead (RayParity), unless that
@@ -239,7 +225,7 @@ MeshResult Mesher::extract(bool stoppable) {
     bool done = true;
     for (std::size_t c = 0; c < g.cells.size() && done; ++c) {
       const Tet& t = g.cells[c];
-      if (std::find(t.begin(), t.end(), kInfinite) != t.end() || flat_on_facet(t)) continue;
+      if (std::find(t.begin(), t.end(), kInfinite) != t.end() || sub_.flat_on_facet(t)) continue;
       Point3 z{{0, 0, 0}};
       for (int v : t)
         for (int k = 0; k < 3; ++k) z[k] += tri_.point(v)[k];
@@ -251,11 +237,11 @@ MeshResult Mesher::extract(bool stoppable) {
     if (done)
       inside.swap(by_ray);
     else
-      ++caps_reached;  // kRayParityBudget: the flood fill's labels stay
+      meter_.cap_reached();  // kRayParityBudget: the flood fill's labels stay
   }
   // Which input facet each wall triangle lies in.
   std::unordered_map<Tri, int, TriHash> facet_of;
-  for (const Subfacet& h : subfacets())
+  for (const Subfacet& h : sub_.subfacets())
     if (!dom_.is_box_facet(h.facet)) facet_of[sorted(h.v)] = h.facet;
 
   // A wall triangle that is no subfacet: where cocircular points of a facet
@@ -265,9 +251,9 @@ MeshResult Mesher::extract(bool stoppable) {
   // that holds its three vertices; -1 if there is none or more than one.
   std::vector<int> fa, fb, fc;
   auto common_facet = [&](const Tri& f) {
-    facets_of(f[0], fa);
-    facets_of(f[1], fb);
-    facets_of(f[2], fc);
+    sub_.facets_of(f[0], fa);
+    sub_.facets_of(f[1], fb);
+    sub_.facets_of(f[2], fc);
     int found = -1;
     for (int x : fa)
       if (!dom_.is_box_facet(x) && std::count(fb.begin(), fb.end(), x) && std::count(fc.begin(), fc.end(), x)) {

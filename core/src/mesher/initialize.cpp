@@ -7,14 +7,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "mesher/mesher.h"
+#include "mesher/phases.h"
 
 namespace wqmesh::mesher {
 
 // ---- INITIALIZE (section 4.1 and 4.3) ----------------------------------------------
 
-void Mesher::initialize() {
-  phase_ = Phase::initialize;
+void Initialize::run() {
   const PLC& P = dom_.p;
   // V starts as the vertices of P.
   for (int v = 0; v < static_cast<int>(P.vertices.size()); ++v) {
@@ -23,8 +22,8 @@ void Mesher::initialize() {
     ins.on = On::vertex;
     ins.element = v;
     ins.hint = v - 1;
-    if (interrupted()) return;
-    if (insert(ins) != v)
+    if (meter_.interrupted()) return;
+    if (ins_.insert(ins) != v)
       throw std::runtime_error("INITIALIZE: input vertex " + std::to_string(v) + " could not be inserted");
   }
   // The points where the boundary of each vertex ball crosses the edges of P.
@@ -41,8 +40,8 @@ void Mesher::initialize() {
       ins.element = e;
       ins.ball = u;
       ins.hint = u;
-      if (interrupted()) return;
-      const int id = insert(ins, Rule::initialize);
+      if (meter_.interrupted()) return;
+      const int id = ins_.insert(ins, Rule::initialize);
       if (id < 0) throw std::runtime_error("INITIALIZE: a vertex-ball point could not be inserted");
       ball_point[{u, e}] = id;
     }
@@ -64,35 +63,32 @@ void Mesher::initialize() {
       s.edge = e;
       s.in_ball = (i == 0 && pa != ball_point.end()) || (i + 2 == chain.size() && pb != ball_point.end());
       s.sharp = dom_.sharp_edge[e] && !s.in_ball;
-      add_segment(s);
+      queues_.push_segment(sub_.add_segment(s));
     }
   }
   // Shield subsegments: one per sector of a facet at a sharp vertex, between
   // the ball points on the sector's two edges; a sector of angle pi or more is
   // split at the midpoint of its arc (SOS, section 4.1).
-  vertex_sectors_.assign(P.vertices.size(), {});
   for (int u = 0; u < static_cast<int>(P.vertices.size()); ++u) {
     if (dom_.ball_radius[u] <= 0) continue;
     dom_.for_each_corner(u, [&](int f, int prev, int next) {
       // The facet lies to the left of its loops seen from outside, so its
       // sector at u turns counter-clockwise (about n) from next to prev.
       const Sector s = dom_.sector(u, f, prev, next);
-      const int sid = static_cast<int>(sectors_.size());
-      sectors_.push_back(s);
-      vertex_sectors_[u].push_back(sid);
+      const int sid = sub_.add_sector(u, s);
       Subsegment shield;
       shield.a = ball_point.at({u, edge_between(u, next)});
       shield.b = ball_point.at({u, edge_between(u, prev)});
       shield.sector = sid;
       shield.ta = 0;
       shield.tb = s.span;
-      add_segment(shield);
-      if (s.span >= kPi) insert(splite(shield), Rule::initialize);
+      queues_.push_segment(sub_.add_segment(shield));
+      if (s.span >= kPi) ins_.insert(sub_.splite(shield), Rule::initialize);
     });
   }
 }
 
-int Mesher::edge_between(int u, int w) const {
+int Initialize::edge_between(int u, int w) const {
   for (int e : dom_.vertex_edges[u])
     if (dom_.p.edges[e].a == w || dom_.p.edges[e].b == w) return e;
   throw std::logic_error("no edge of P between vertices " + std::to_string(u) + " and " + std::to_string(w));

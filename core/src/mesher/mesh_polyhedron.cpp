@@ -89,13 +89,13 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   std::vector<PhaseStats> phases;
   std::size_t last_count = 0;
   auto run = [&](const char* name, auto&& step) {
-    if (m.stopped()) return;
+    if (m.meter().stopped()) return;
     if (progress) {
       Progress p;
       p.phase = name;
       p.vertices = m.vertices().size();
       if (!progress(p)) {
-        m.cancel();
+        m.meter().cancel();
         return;
       }
     }
@@ -118,7 +118,7 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   run("conform", [&] { m.conform(); });
   run("refine", [&] { m.refine(); });
   std::size_t slivers_qmesh = 0;
-  if (options.pump && !m.stopped()) {
+  if (options.pump && !m.meter().stopped()) {
     // Count the inside slivers QMESH would leave (a stoppable extraction:
     // a cancel during it ends the run), then PUMP.
     MeshResult before = m.extract(true);
@@ -126,15 +126,15 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     run("pump", [&] { m.pump(); });
   }
   MeshResult r;
-  if (m.stop_reason() == "cancelled") {
+  if (m.meter().stop_reason() == "cancelled") {
     // Beyond the paper (issue 10, stops that reach every step): a cancelled
     // run returns at once, without extracting its partial mesh (extraction
     // walks the whole triangulation: about a second at 300,000 tets), so
     // that a cancel takes effect within a bounded amount of work.
-    r.stopped = m.stop_reason();
+    r.stopped = m.meter().stop_reason();
     r.stop_message = "cancelled by the caller at " + std::to_string(m.vertices().size()) +
                      " vertices; no mesh was extracted";
-    r.protecting_balls = m.protecting_balls();
+    r.protecting_balls = m.balls().all();
   } else {
     const auto t0 = clock::now();
     r = m.extract();
@@ -144,7 +144,7 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     phases.push_back(s);
   }
   r.phases = phases;
-  if (r.stop_message.empty()) r.stop_message = m.stop_message();  // "stalled"
+  if (r.stop_message.empty()) r.stop_message = m.meter().stop_message();  // "stalled"
   if (r.stopped == "limit" && r.stop_message.empty()) {
     char text[200];
     std::snprintf(text, sizeof text, "the vertex limit %zu was reached in %s", options.max_vertices,
@@ -155,9 +155,9 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
   r.points_inserted = m.vertices().size() - domain.p.vertices.size();
   r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
-  r.pumped_vertices = m.pumped_vertices;
-  r.rule_points = m.rule_count;
-  r.caps_reached = m.caps_reached;
+  r.pumped_vertices = m.pumped_vertices();
+  r.rule_points = m.inserter().rule_count();
+  r.caps_reached = m.meter().caps_reached();
   r.all_vertices = m.vertices().size();
   if (options.measure_floor) {
     std::vector<Point3> points(m.vertices().size());

@@ -1,27 +1,85 @@
-// wqmesh: the Mesher's own bookkeeping: its construction, the steps and work
-// units every phase counts (the stops of issue 10), progress reports, traces.
+// wqmesh: the pieces of a run and the phases in order (class Mesher), and the
+// insertion of a point into V with its upkeep (class Inserter).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesher/mesher.h"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
+
+#include "mesher/extract.h"
+#include "mesher/phases.h"
+#include "mesher/pump.h"
 
 namespace wqmesh::mesher {
 
 Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressCallback& progress)
-    : dom_(domain), opt_(options), progress_(progress), balls_(domain.box) {
-  trace_ = std::getenv("WQMESH_TRACE") != nullptr;
-  facet_dt_.resize(domain.p.facets.size());
-  // Each facet's planar triangulation projects along the largest component of
-  // its normal and tests circles in the plane's metric (see PlanarDelaunay):
-  // points collinear in 3D stay collinear there, and no point is hidden.
-  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) facet_dt_[f].set_plane(domain.p.facets[f].normal);
-  vertex_sectors_.assign(domain.p.vertices.size(), {});
+    : dom_(domain),
+      opt_(options),
+      balls_(domain.box),
+      meter_(options, progress, verts_),
+      sub_(domain, tri_, verts_, balls_),
+      queues_(domain, tri_, sub_, meter_),
+      ins_(options, tri_, verts_, sub_, queues_, meter_) {}
+
+void Mesher::initialize() {
+  meter_.set_phase(Phase::initialize);
+  Initialize(dom_, sub_, queues_, ins_, meter_).run();
 }
 
-void Mesher::trace(const Insertion& ins, Rule rule, int id) const {
+void Mesher::conform() {
+  meter_.set_phase(Phase::conform);
+  Conform(dom_, opt_, tri_, sub_, queues_, ins_, meter_, balls_).run();
+}
+
+void Mesher::refine() {
+  meter_.set_phase(Phase::refine);
+  Refine(dom_, opt_, tri_, verts_, sub_, balls_, queues_, ins_, meter_).run();
+}
+
+Pump Mesher::make_pump() { return Pump(dom_, opt_, tri_, verts_, sub_, balls_, meter_); }
+
+void Mesher::pump() {
+  meter_.set_phase(Phase::pump);
+  Pump p = make_pump();
+  p.run();
+  nn_ = p.nearest_neighbours();
+  pumped_vertices_ = p.pumped_vertices();
+}
+
+MeshResult Mesher::extract(bool stoppable) {
+  return Extract(dom_, opt_, tri_, verts_, sub_, balls_, nn_, meter_).run(stoppable);
+}
+
+// ---- insertion into V --------------------------------------------------------------
+
+Inserter::Inserter(const MeshOptions& options, RegularTriangulation& tri, std::vector<MVertex>& vertices,
+                   Subcomplex& sub, Queues& queues, WorkMeter& meter)
+    : opt_(options), tri_(tri), verts_(vertices), sub_(sub), queues_(queues), meter_(meter) {
+  trace_ = std::getenv("WQMESH_TRACE") != nullptr;
+}
+
+int Inserter::insert(const Insertion& ins) {
+  if (ins.none) return -1;
+  const int before = tri_.number_of_vertices();
+  const int id = tri_.insert(ins.p, 0, ins.hint);
+  if (id < before) return -1;  // hidden or an existing vertex: nothing inserted
+  MVertex m;
+  m.on = ins.on;
+  m.element = ins.element;
+  m.sector = ins.sector;
+  m.angle = ins.angle;
+  m.ball = ins.ball;
+  verts_.push_back(m);
+  std::vector<std::uint64_t> halves;
+  sub_.insert_vertex(id, ins, halves);
+  for (std::uint64_t k : halves) queues_.push_segment(k);
+  queues_.enqueue_around(id);
+  if (verts_.size() >= opt_.max_vertices) meter_.stop("limit");
+  return id;
+}
+
+void Inserter::trace(const Insertion& ins, Rule rule, int id) const {
   double len = 0;
   if (ins.has_segment) {
     const int a = int(ins.split_segment >> 32), b = int(ins.split_segment & 0xFFFFFFFFu);
@@ -31,55 +89,6 @@ void Mesher::trace(const Insertion& ins, Rule rule, int id) const {
   std::fprintf(stderr, "wqmesh trace: rule %d -> %d on %s %d at (%.17g, %.17g, %.17g) split %s length %g\n",
                rule_number(rule), id, kOn[int(ins.on)], ins.element, ins.p[0], ins.p[1], ins.p[2],
                ins.has_segment ? (ins.sector >= 0 ? "shield" : "subsegment") : "-", len);
-}
-
-bool Mesher::tick() {
-  ++steps_;
-  step_done();
-  if (steps_ % kPollSteps == 0) next_poll_ = work_;  // a progress call at least every kPollSteps steps
-  return poll(0, false);
-}
-
-bool Mesher::poll(std::uint64_t units, bool in_step) {
-  work_ += units;
-  if (in_step) {
-    step_work_ += units;
-    if (step_work_ > opt_.stall_work && stop_reason_.empty()) {
-      static const char* kNames[] = {"initialize", "conform", "refine", "pump", "done"};
-      stop_reason_ = "stalled";
-      stop_message_ = std::string("a step of ") + kNames[int(phase_)] + " (step " + std::to_string(steps_ + 1) +
-                      ", at " + std::to_string(verts_.size()) + " vertices) did more than " +
-                      std::to_string(opt_.stall_work) +
-                      " units of work without finishing: the stuck-step watchdog ended the run";
-    }
-  }
-  if (work_ >= next_poll_) {
-    next_poll_ = work_ + kPollWork;
-    report_progress();
-  }
-  return stop_reason_.empty();
-}
-
-RegularTriangulation::CellGraph Mesher::scan_cell_graph() {
-  return tri_.cell_graph([this](std::size_t cells) { return poll(cells, false); });
-}
-
-void Mesher::report_progress() {
-  if (progress_) {
-    Progress p;
-    p.phase = phase_ == Phase::conform  ? "conform"
-              : phase_ == Phase::refine ? "refine"
-              : phase_ == Phase::pump   ? "pump"
-                                        : "initialize";
-    p.vertices = verts_.size();
-    p.steps = steps_;
-    // Refinement has no known end; the fraction grows with the vertex count
-    // towards the limit (an estimate), inside the phase's share of the run.
-    const double base = phase_ == Phase::conform ? 0.05 : phase_ == Phase::refine ? 0.3 : 0.8;
-    const double share = phase_ == Phase::conform ? 0.25 : phase_ == Phase::refine ? 0.5 : 0.15;
-    p.fraction = base + share * (1 - 1 / (1 + double(steps_) / 20000));
-    if (!progress_(p) && stop_reason_.empty()) stop_reason_ = "cancelled";
-  }
 }
 
 }  // namespace wqmesh::mesher

@@ -12,6 +12,8 @@
 #include <unordered_set>
 
 #include "mesher/pump.h"
+
+#include "mesher/extract.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
@@ -32,45 +34,42 @@ bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, doubl
 
 }  // namespace
 
-Pump::Pump(Mesher& m) : m_(m), tri_(m.weighted_triangulation()) {}
-
 void Pump::prepare() {
   // N(v), the nearest-neighbour distance in the unweighted Del V at the end
   // of REFINE; it bounds the weights and does not change when they do.
-  // A scan of the whole mesh: it polls, and stops early (m_.stopped()) when
+  // A scan of the whole mesh: it polls, and stops early (meter_.stopped()) when
   // the run must stop; run() then does nothing more.
-  const std::size_t nv = m_.vertices().size();
+  const std::size_t nv = verts_.size();
   nn_.assign(nv, 0);
   for (std::size_t v = 0; v < nv; ++v) {
-    if (!m_.poll(1, false)) break;
-    nn_[v] = m_.nearest_neighbour(static_cast<int>(v));
+    if (!meter_.poll(1, false)) break;
+    nn_[v] = nearest_neighbour(tri_, static_cast<int>(v));
   }
-  m_.set_nearest_neighbours(nn_);
-  if (m_.stopped()) return;
-  const RegularTriangulation::CellGraph g = m_.scan_cell_graph();
-  if (m_.stopped()) return;
-  const std::vector<char> inside = m_.interior_labels(g, true);
-  if (m_.stopped()) return;
+  if (meter_.stopped()) return;
+  const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
+  if (meter_.stopped()) return;
+  const std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, true);
+  if (meter_.stopped()) return;
   labels_.clear();
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
-    if (!m_.poll(1, false)) return;
+    if (!meter_.poll(1, false)) return;
     labels_[key_of(g.cells[i])] = inside[i];
   }
   // Vertices of inside tets with a dihedral angle <= theta, worst first.
   candidates_.clear();
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
-    if (!m_.poll(1, false)) return;
+    if (!meter_.poll(1, false)) return;
     if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
     const double a = angle_of(g.cells[i]);
-    if (a <= m_.options().theta_deg)
+    if (a <= opt_.theta_deg)
       for (int v : g.cells[i]) candidates_.push_back({a, v});
   }
   std::sort(candidates_.begin(), candidates_.end());
   walls_.clear();
-  vertex_facets_.assign(m_.vertices().size(), {});
-  for (const Subfacet& h : m_.subfacets()) {
+  vertex_facets_.assign(verts_.size(), {});
+  for (const Subfacet& h : sub_.subfacets()) {
     const Tri s = sorted(h.v);
-    if (!m_.domain().is_box_facet(h.facet)) walls_.insert(s);
+    if (!dom_.is_box_facet(h.facet)) walls_.insert(s);
     for (int x : h.v) vertex_facets_[x].push_back(s);
   }
 }
@@ -81,18 +80,18 @@ double Pump::weight_bound(int v) const { return nn_[v] * nn_[v] / 9; }
 
 void Pump::run() {
   prepare();
-  if (m_.stopped()) return;
+  if (meter_.stopped()) return;
   std::vector<std::pair<double, int>> cand = candidates();
-  for (int pass = 0; pass < m_.options().max_pump_passes && !cand.empty(); ++pass) {
+  for (int pass = 0; pass < opt_.max_pump_passes && !cand.empty(); ++pass) {
     std::sort(cand.begin(), cand.end());
-    std::vector<char> seen(m_.vertices().size(), 0);
+    std::vector<char> seen(verts_.size(), 0);
     std::vector<std::pair<double, int>> next;
     bool improved = false;
     for (const auto& [a, v] : cand) {
       if (seen[v]) continue;
       seen[v] = 1;
-      if (!m_.tick()) return;
-      if (m_.balls().expansion_encroached(tri_.point(v), weight_bound(v))) continue;
+      if (!meter_.tick()) return;
+      if (balls_.expansion_encroached(tri_.point(v), weight_bound(v))) continue;
       const Choice c = pump_vertex(v);
       if (c.quality > c.base) improved = true;
       // Slivers left or made around v are visited in the next pass.
@@ -101,14 +100,14 @@ void Pump::run() {
       for (const Tet& t : star) {
         if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
         const double b = angle_of(t);
-        if (b <= m_.options().theta_deg)
+        if (b <= opt_.theta_deg)
           for (int x : t) next.push_back({b, x});
       }
     }
     if (!improved) break;
     cand.swap(next);
   }
-  for (std::size_t v = 0; v < m_.vertices().size(); ++v) m_.pumped_vertices += tri_.weight(int(v)) > 0;
+  for (std::size_t v = 0; v < verts_.size(); ++v) pumped_vertices_ += tri_.weight(int(v)) > 0;
 }
 
 double Pump::angle_of(const Tet& t) const {
@@ -121,7 +120,7 @@ char Pump::label(const Tet& t) {
   // Inside (1) or outside (0). Cells made by a weight change take the label
   // of a neighbour across a facet, flipped when the facet is a wall; the
   // changed region is surrounded by cells known before.
-  if (std::count(t.begin(), t.end(), kInfinite) || m_.flat_on_facet(t)) return 0;
+  if (std::count(t.begin(), t.end(), kInfinite) || sub_.flat_on_facet(t)) return 0;
   const auto it = labels_.find(key_of(t));
   if (it != labels_.end()) return it->second;
   // At most kLabelRounds rounds, each over a deduplicated list of cells.
@@ -130,7 +129,7 @@ char Pump::label(const Tet& t) {
     std::sort(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) < key_of(b); });
     todo.erase(std::unique(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) == key_of(b); }),
                todo.end());
-    m_.poll(todo.size());
+    meter_.poll(todo.size());
     std::vector<Tet> later;
     for (const Tet& c : todo) {
       if (labels_.count(key_of(c))) continue;
@@ -141,7 +140,7 @@ char Pump::label(const Tet& t) {
         Tet c1, c2;
         if (!tri_.facet_cells(a, b, d, c1, c2)) continue;
         const Tet& other = key_of(c1) == key_of(c) ? c2 : c1;
-        if (m_.flat_on_facet(other)) continue;  // its label says nothing
+        if (sub_.flat_on_facet(other)) continue;  // its label says nothing
         char lo;
         if (std::count(other.begin(), other.end(), kInfinite)) {
           lo = 0;
@@ -162,7 +161,7 @@ char Pump::label(const Tet& t) {
     todo.swap(later);
   }
   const auto jt = labels_.find(key_of(t));
-  if (jt == labels_.end()) ++m_.caps_reached;  // kLabelRounds: taken as outside
+  if (jt == labels_.end()) meter_.cap_reached();  // kLabelRounds: taken as outside
   return jt != labels_.end() ? jt->second : 0;
 }
 
@@ -174,7 +173,7 @@ Pump::Features Pump::features_around(int v) const {
   ring.push_back(v);
   Features f;
   for (int x : ring) {
-    for (std::uint64_t k : m_.subsegments_at(x)) f.segments.push_back(k);
+    for (std::uint64_t k : sub_.subsegments_at(x)) f.segments.push_back(k);
     for (const Tri& t : vertex_facets_[x]) f.subfacets.push_back(t);
   }
   std::sort(f.segments.begin(), f.segments.end());
@@ -186,7 +185,7 @@ Pump::Features Pump::features_around(int v) const {
 
 bool Pump::present(const Features& f) const {
   for (std::uint64_t k : f.segments) {
-    const Subsegment& s = m_.subsegment(k);
+    const Subsegment& s = sub_.subsegment(k);
     if (!tri_.is_edge(s.a, s.b)) return false;
   }
   for (const Tri& t : f.subfacets)
@@ -201,7 +200,7 @@ double Pump::evaluate(int v, double w, const Features& f) {
   if (!present(f) || !present(features_around(v))) return -1;
   std::vector<Tet> star;
   tri_.incident_cells(v, star);
-  m_.poll(star.size() + f.segments.size() + f.subfacets.size());
+  meter_.poll(star.size() + f.segments.size() + f.subfacets.size());
   double worst = 180;
   for (const Tet& t : star)
     if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
@@ -264,14 +263,9 @@ Pump::Choice Pump::pump_vertex(int v) {
     if (cw >= wmax) break;
     tri_.set_weight(v, cw);
   }
-  if (step == kCriticalSteps) ++m_.caps_reached;
+  if (step == kCriticalSteps) meter_.cap_reached();
   evaluate(v, choice.weight, f);
   return choice;
-}
-
-void Mesher::pump() {
-  phase_ = Phase::pump;
-  Pump(*this).run();
 }
 
 }  // namespace wqmesh::mesher

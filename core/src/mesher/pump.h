@@ -1,8 +1,9 @@
 // wqmesh: PUMP (private; paper, section 4.3): the weights of the sliver
-// vertices. It reads the mesher through its public interface only (the
-// triangulation's weights are all it changes): the inside/outside labels of
-// cells kept as the weighted triangulation changes, the walls (input
-// subfacets) and, per vertex, the subfacets whose presence must be kept.
+// vertices. It is handed V's triangulation, whose weights are all it changes,
+// and reads the subcomplex, the protecting balls and the options; it keeps
+// the inside/outside labels of cells as the weighted triangulation changes,
+// the walls (input subfacets) and, per vertex, the subfacets whose presence
+// must be kept.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -11,13 +12,20 @@
 #include <utility>
 #include <vector>
 
-#include "mesher/mesher.h"
+#include "mesher/domain.h"
+#include "mesher/protecting_balls.h"
+#include "mesher/subcomplex.h"
+#include "mesher/work_meter.h"
+#include "triangulation.h"
+#include "wqmesh/mesher.h"
 
 namespace wqmesh::mesher {
 
 class Pump {
  public:
-  explicit Pump(Mesher& m);
+  Pump(const Domain& domain, const MeshOptions& options, RegularTriangulation& tri,
+       const std::vector<MVertex>& vertices, const Subcomplex& sub, const ProtectingBalls& balls, WorkMeter& meter)
+      : dom_(domain), opt_(options), tri_(tri), verts_(vertices), sub_(sub), balls_(balls), meter_(meter) {}
   /// N(v) for every vertex, cell labels, walls. Called by run().
   void prepare();
   void run();
@@ -26,6 +34,11 @@ class Pump {
   std::vector<std::pair<double, int>> candidates() const;
   /// N(v)^2/9.
   double weight_bound(int v) const;
+  /// N(v) for every vertex, as prepare() measured it (the extraction reports
+  /// these).
+  const std::vector<double>& nearest_neighbours() const { return nn_; }
+  /// The vertices with a weight once run() is done.
+  std::size_t pumped_vertices() const { return pumped_vertices_; }
 
   struct Features {
     std::vector<std::uint64_t> segments;
@@ -58,8 +71,14 @@ class Pump {
   double next_critical(int v, double w, double cap) const;
   bool present(const Features& f) const;
 
-  Mesher& m_;
+  const Domain& dom_;
+  const MeshOptions& opt_;
   RegularTriangulation& tri_;
+  const std::vector<MVertex>& verts_;
+  const Subcomplex& sub_;
+  const ProtectingBalls& balls_;
+  WorkMeter& meter_;
+  std::size_t pumped_vertices_ = 0;
   std::vector<double> nn_;  ///< N(v), measured by prepare()
   std::unordered_map<TetKey, char, TetKeyHash> labels_;
   std::unordered_set<Tri, TriHash> walls_;

@@ -6,18 +6,32 @@
 #include <limits>
 #include <unordered_set>
 
+#include "mesher/queues.h"
+
 #include "mesher/mesher.h"
 
 namespace wqmesh::mesher {
 
-void Mesher::enqueue_around(int v) {
-  if (phase_ == Phase::initialize) return;
+void Queues::fill(bool tets) {
+  for (const auto& [k, s] : sub_.subsegments()) segments_.push_back(k);
+  std::sort(segments_.begin(), segments_.end());
+  for (const Subfacet& h : sub_.subfacets()) subfacets_.push_back(h);
+  if (tets) {
+    std::vector<Tet> cells;
+    std::vector<CellRef> refs;
+    tri_.finite_cells(cells, refs);
+    for (std::size_t i = 0; i < cells.size(); ++i) tets_.push_back({cells[i], refs[i]});
+  }
+}
+
+void Queues::enqueue_around(int v) {
+  if (meter_.phase() == Phase::initialize) return;
   // The star of v gives both its new cells and its neighbours.
   std::vector<Tet> cells;
   std::vector<CellRef> refs;
   tri_.incident_cells(v, cells, &refs);
   // The upkeep always completes (a stop is seen by the caller's loop).
-  poll(cells.size());
+  meter_.poll(cells.size());
   std::vector<int> ring;
   for (const Tet& c : cells)
     for (int x : c)
@@ -27,9 +41,9 @@ void Mesher::enqueue_around(int v) {
   auto in_ring = [&](int x) { return std::binary_search(ring.begin(), ring.end(), x); };
   // Subsegments: the new ones, and those the new vertex may encroach.
   for (int x : ring)
-    for (std::uint64_t k : vertex_segs_[x]) {
-      const Subsegment& s = segs_.at(k);
-      if (in_ring(s.a) && in_ring(s.b)) queues_.segments.push_back(k);
+    for (std::uint64_t k : sub_.subsegments_at(x)) {
+      const Subsegment& s = sub_.subsegment(k);
+      if (in_ring(s.a) && in_ring(s.b)) segments_.push_back(k);
     }
   // Subfacets: those with all vertices in the ring (new ones, and those the
   // vertex may encroach or remove from Del V).
@@ -40,7 +54,7 @@ void Mesher::enqueue_around(int v) {
   // may be missing from Del V whatever their vertices. The cheap tests come
   // first: lies_in_facet runs once per candidate.
   auto consider = [&](int f, const Tri& t) {
-    if (seen.insert(sorted(t)).second && lies_in_facet(f, t)) queues_.subfacets.push_back({f, t});
+    if (seen.insert(sorted(t)).second && sub_.lies_in_facet(f, t)) subfacets_.push_back({f, t});
   };
   // A vertex of the ring may be the apex of a long fan in a facet (its far
   // edge split finely, as between nearly touching edges): walking its whole
@@ -49,94 +63,97 @@ void Mesher::enqueue_around(int v) {
   constexpr std::size_t kFan = 48;
   std::vector<Tri> pair;
   for (int x : ring) {
-    facets_of(x, fs);
+    sub_.facets_of(x, fs);
     for (int f : fs) {
       // v's own star is always walked whole.
       const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
-      poll(1);
-      if (facet_dt_[f].incident_triangles(x, around, cap)) {
-        poll(around.size());
+      meter_.poll(1);
+      if (sub_.facet_triangulation(f).incident_triangles(x, around, cap)) {
+        meter_.poll(around.size());
         for (const Tri& t : around)
           if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
         continue;
       }
       for (int y : ring) {
         if (y == x || y == v) continue;
-        poll(1);
-        facet_dt_[f].edge_triangles(x, y, pair);
+        meter_.poll(1);
+        sub_.facet_triangulation(f).edge_triangles(x, y, pair);
         for (const Tri& t : pair)
           if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
       }
     }
   }
-  if (phase_ == Phase::refine)
+  if (meter_.phase() == Phase::refine)
     for (std::size_t i = 0; i < cells.size(); ++i)
       if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end())
-        queues_.tets.push_back({cells[i], refs[i]});
+        tets_.push_back({cells[i], refs[i]});
 }
 
-bool Mesher::process_queues(bool refine_phase) {
+bool Queues::process(Inserter& inserter, const Rule6& rule6) {
+  const bool refine_phase = static_cast<bool>(rule6);
   // Bounded by the queues: each pass takes one element off a queue, and
   // elements are pushed only by insertions (at most a star's worth each, and
   // the vertex limit bounds the insertions) or again after one (at most
   // Caps::kRetries times per feature).
-  while (stop_reason_.empty()) {
-    step_done();  // each queue element is a step of the watchdog
-    if (!poll(1)) break;
-    if (!queues_.segments.empty()) {
-      const std::uint64_t k = queues_.segments.front();
-      queues_.segments.pop_front();
+  while (!meter_.stopped()) {
+    meter_.step_done();  // each queue element is a step of the watchdog
+    if (!meter_.poll(1)) break;
+    if (!segments_.empty()) {
+      const std::uint64_t k = segments_.front();
+      segments_.pop_front();
       split_encroached_subsegment(
-          k, refine_phase ? Rule::rule4_split_encroached_subsegment : Rule::rule1_split_encroached_subsegment);
+          inserter, k,
+          refine_phase ? Rule::rule4_split_encroached_subsegment : Rule::rule1_split_encroached_subsegment);
       continue;
     }
-    if (!queues_.subfacets.empty()) {
-      const Subfacet h = queues_.subfacets.front();
-      queues_.subfacets.pop_front();
-      if (!is_subfacet(h.facet, h.v)) continue;
+    if (!subfacets_.empty()) {
+      const Subfacet h = subfacets_.front();
+      subfacets_.pop_front();
+      if (!sub_.is_subfacet(h.facet, h.v)) continue;
       if (!refine_phase && rule2_needs_split(h))
-        split_subfacet(h, Rule::rule2_split_missing_subfacet);
+        split_subfacet(inserter, h, Rule::rule2_split_missing_subfacet);
       else if (refine_phase && rule5_needs_split(h))
-        split_subfacet(h, Rule::rule5_split_encroached_subfacet);
+        split_subfacet(inserter, h, Rule::rule5_split_encroached_subfacet);
       continue;
     }
-    if (refine_phase && !queues_.tets.empty()) {
-      const auto [t, ref] = queues_.tets.front();
-      queues_.tets.pop_front();
-      if (rule6_split_skinny_tet(t, ref)) tick();
+    if (refine_phase && !tets_.empty()) {
+      const auto [t, ref] = tets_.front();
+      tets_.pop_front();
+      if (rule6(t, ref)) meter_.tick();
       continue;
     }
     break;
   }
-  return stop_reason_.empty();
+  return !meter_.stopped();
 }
 
-void Mesher::split_encroached_subsegment(std::uint64_t k, Rule rule) {
-  const auto it = segs_.find(k);
-  if (it == segs_.end() || !segment_encroached(it->second)) return;
-  insert(splite(it->second), rule);
-  tick();
+void Queues::split_encroached_subsegment(Inserter& inserter, std::uint64_t k, Rule rule) {
+  const auto it = sub_.subsegments().find(k);
+  if (it == sub_.subsegments().end() || !sub_.segment_encroached(it->second)) return;
+  inserter.insert(sub_.splite(it->second), rule);
+  meter_.tick();
 }
 
-bool Mesher::rule2_needs_split(const Subfacet& h) const {
-  return dom_.is_box_facet(h.facet) ? subfacet_encroached(h) : !subfacet_present(h);
+bool Queues::rule2_needs_split(const Subfacet& h) const {
+  return dom_.is_box_facet(h.facet) ? sub_.subfacet_encroached(h) : !sub_.subfacet_present(h);
 }
 
-bool Mesher::rule5_needs_split(const Subfacet& h) const {
-  return guarded(h) ? !subfacet_present(h) : subfacet_encroached(h);
+bool Queues::rule5_needs_split(const Subfacet& h) const {
+  return sub_.guarded(h) ? !sub_.subfacet_present(h) : sub_.subfacet_encroached(h);
 }
 
-void Mesher::split_subfacet(const Subfacet& h, Rule rule) {
+void Queues::split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule) {
   // SPLITF may reject the circumcenter and split a subsegment instead; then
   // the subfacet is looked at again once that is done.
-  const Insertion ins = splitf(h);
-  if (insert(ins, rule) >= 0 && ins.has_segment) {
-    if (++retries_[sorted(h.v)] <= Caps::kRetries)
-      queues_.subfacets.push_back(h);
-    else
-      ++caps_reached;
-  }
-  tick();
+  const Insertion ins = sub_.splitf(h);
+  if (inserter.insert(ins, rule) >= 0 && ins.has_segment && may_retry(h.v)) subfacets_.push_back(h);
+  meter_.tick();
+}
+
+bool Queues::may_retry(const Tri& t) {
+  if (++retries_[sorted(t)] <= Caps::kRetries) return true;
+  meter_.cap_reached();
+  return false;
 }
 
 }  // namespace wqmesh::mesher

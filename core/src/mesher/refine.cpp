@@ -5,7 +5,8 @@
 #include <cmath>
 #include <unordered_set>
 
-#include "mesher/mesher.h"
+#include "mesher/extract.h"
+#include "mesher/phases.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
@@ -18,27 +19,22 @@ double min_dihedral(const RegularTriangulation& tri, const Tet& t) {
 }
 }  // namespace
 
-void Mesher::refine() {
-  phase_ = Phase::refine;
-  for (const auto& [k, s] : segs_) queues_.segments.push_back(k);
-  std::sort(queues_.segments.begin(), queues_.segments.end());
-  for (const Subfacet& h : subfacets()) queues_.subfacets.push_back(h);
-  {
-    std::vector<Tet> cells;
-    std::vector<CellRef> refs;
-    tri_.finite_cells(cells, refs);
-    for (std::size_t i = 0; i < cells.size(); ++i) queues_.tets.push_back({cells[i], refs[i]});
-  }
-  if (!process_queues(true)) return;
+void Refine::run() {
+  queues_.fill(true);
+  if (!process_queues()) return;
   if (!opt_.pump) return;
   // Rule 7 passes until one inserts nothing, at most Caps::kRule7Passes.
   int pass = 0;
-  for (; pass < Caps::kRule7Passes && stop_reason_.empty(); ++pass)
+  for (; pass < Caps::kRule7Passes && !meter_.stopped(); ++pass)
     if (!rule7_pass()) break;
-  if (pass == Caps::kRule7Passes) ++caps_reached;
+  if (pass == Caps::kRule7Passes) meter_.cap_reached();
 }
 
-bool Mesher::rule6_split_skinny_tet(const Tet& t, CellRef ref) {
+bool Refine::process_queues() {
+  return queues_.process(ins_, [this](const Tet& t, CellRef ref) { return rule6_split_skinny_tet(t, ref); });
+}
+
+bool Refine::rule6_split_skinny_tet(const Tet& t, CellRef ref) {
   // Rule 6: a tet with circumradius-edge ratio above rho0 (or, beyond the
   // paper, circumradius above max_size) is split at its circumcenter z unless
   // z lies on or inside a protecting ball; ENCROACH(z) decides the point.
@@ -68,18 +64,13 @@ bool Mesher::rule6_split_skinny_tet(const Tet& t, CellRef ref) {
   if (balls_.contains(z)) return false;
   // When ENCROACH rejects z for a point on a subsegment or subfacet, the tet
   // is looked at again afterwards (it may survive that insertion).
-  const Insertion ins = encroach(z, t[0]);
-  if (insert(ins, Rule::rule6_split_skinny_tet) < 0) return false;
-  if (ins.on != On::free) {
-    if (++retries_[sorted({{t[0], t[1], t[2]}})] <= Caps::kRetries)
-      queues_.tets.push_back({t, ref});
-    else
-      ++caps_reached;
-  }
+  const Insertion ins = sub_.encroach(z, t[0]);
+  if (ins_.insert(ins, Rule::rule6_split_skinny_tet) < 0) return false;
+  if (ins.on != On::free && queues_.may_retry({{t[0], t[1], t[2]}})) queues_.push_tet(t, ref);
   return true;
 }
 
-bool Mesher::rule7_pass() {
+bool Refine::rule7_pass() {
   // Rule 7: for a vertex v of a tet with a dihedral angle of theta or less,
   // weighted with N(v)^2/9, unless it encroaches the two-times expansion of a
   // protecting ball: (i) split a subsegment it encroaches; (ii) split the
@@ -89,13 +80,13 @@ bool Mesher::rule7_pass() {
   // outside are discarded at the end), and the features examined are those
   // incident to v and to its neighbours (a choice: the paper does not say how
   // far to look).
-  const RegularTriangulation::CellGraph g = scan_cell_graph();
-  if (stopped()) return false;
-  const std::vector<char> inside = interior_labels(g, true);
-  if (stopped()) return false;
+  const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
+  if (meter_.stopped()) return false;
+  const std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, true);
+  if (meter_.stopped()) return false;
   std::vector<std::pair<double, int>> candidates;
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
-    if (!poll(1, false)) return false;
+    if (!meter_.poll(1, false)) return false;
     if (!inside[i] || std::find(g.cells[i].begin(), g.cells[i].end(), kInfinite) != g.cells[i].end()) continue;
     const double angle = min_dihedral(tri_, g.cells[i]);
     if (angle <= opt_.theta_deg)
@@ -107,31 +98,31 @@ bool Mesher::rule7_pass() {
   std::vector<int> ring, fs;
   std::vector<Tri> around;
   for (const auto& [angle, v] : candidates) {
-    step_done();  // each candidate is a step of the watchdog
-    if (!poll(1)) break;
+    meter_.step_done();  // each candidate is a step of the watchdog
+    if (!meter_.poll(1)) break;
     if (done[v]) continue;
     done[v] = 1;
     const Point3 pv = tri_.point(v);
-    const double nv = nearest_neighbour(v);
+    const double nv = nearest_neighbour(tri_, v);
     const double w = nv * nv / 9;
     if (balls_.expansion_encroached(pv, w)) continue;
     tri_.adjacent_vertices(v, ring);
     ring.push_back(v);
-    poll(ring.size());
+    meter_.poll(ring.size());
     // (i) subsegments: power distance to the diametric ball <= 0.
     std::vector<std::uint64_t> seg_keys;
     for (int x : ring)
-      for (std::uint64_t k : vertex_segs_[x]) seg_keys.push_back(k);
+      for (std::uint64_t k : sub_.subsegments_at(x)) seg_keys.push_back(k);
     std::sort(seg_keys.begin(), seg_keys.end());
     seg_keys.erase(std::unique(seg_keys.begin(), seg_keys.end()), seg_keys.end());
     bool has = false;
     Insertion ins;
     for (std::uint64_t k : seg_keys) {
-      const Subsegment& s = segs_.at(k);
+      const Subsegment& s = sub_.subsegment(k);
       if (s.in_ball || s.a == v || s.b == v) continue;
       const Point3 &a = tri_.point(s.a), &b = tri_.point(s.b);
       if (dist2(pv, midpoint(a, b)) - w - 0.25 * dist2(a, b) <= 0) {
-        ins = splite(s);
+        ins = sub_.splite(s);
         has = true;
         break;
       }
@@ -142,16 +133,16 @@ bool Mesher::rule7_pass() {
       const Subfacet* removed = nullptr;
       std::vector<Subfacet> guarded_list;
       for (int x : ring) {
-        facets_of(x, fs);
+        sub_.facets_of(x, fs);
         for (int f : fs) {
-          subfacets_at(f, x, around);
+          sub_.subfacets_at(f, x, around);
           for (const Tri& t : around) {
             if (!seen.insert(sorted(t)).second) continue;
             if (t[0] == v || t[1] == v || t[2] == v) continue;
             const Subfacet h{f, t};
             double r2;
             const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
-            if (!guarded(h)) {
+            if (!sub_.guarded(h)) {
               if (dist2(pv, cc) - w - r2 < 0) nonguarded.push_back(h);
             } else {
               guarded_list.push_back(h);
@@ -172,7 +163,7 @@ bool Mesher::rule7_pass() {
             break;
           }
         }
-        ins = splitf(*pick);
+        ins = sub_.splitf(*pick);
         has = true;
       } else {
         // (iii): a guarded subfacet abc stays in the weighted Delaunay
@@ -209,15 +200,15 @@ bool Mesher::rule7_pass() {
           }
         }
         if (removed) {
-          ins = splitf(*removed);
+          ins = sub_.splitf(*removed);
           has = true;
         }
       }
     }
-    if (has && insert(ins, Rule::rule7_split_for_pumping) >= 0) {
+    if (has && ins_.insert(ins, Rule::rule7_split_for_pumping) >= 0) {
       acted = true;
-      tick();
-      if (!process_queues(true)) break;
+      meter_.tick();
+      if (!process_queues()) break;
     }
   }
   return acted;

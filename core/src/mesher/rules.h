@@ -33,4 +33,16 @@ constexpr int kRules = 8;  ///< Rule::initialize and rules 1..7
 
 constexpr int rule_number(Rule r) { return static_cast<int>(r); }
 
+/// The loop caps of the mesher (beyond the paper: each bounds a loop the
+/// paper lets run to its end). Reaching one is counted in caps_reached.
+struct Caps {
+  /// Rule 3 passes in CONFORM, until one inserts nothing.
+  static constexpr int kRule3Passes = 1000;
+  /// Rule 7 passes in REFINE, until one inserts nothing.
+  static constexpr int kRule7Passes = 100;
+  /// Times a subfacet (or a tet, by three of its vertices) is looked at again
+  /// after its split was deferred to another feature.
+  static constexpr int kRetries = 16;
+};
+
 }  // namespace wqmesh::mesher

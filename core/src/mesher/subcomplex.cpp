@@ -1,18 +1,29 @@
 // wqmesh: the subcomplex (paper, section 4): subsegments and subfacets, their
 // encroachment, SPLITE and SPLITF (section 4.2), ENCROACH (section 4.3), and
-// the insertion of a vertex into V.
+// their upkeep when a vertex joins V.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "mesher/mesher.h"
+#include "mesher/subcomplex.h"
 
 namespace wqmesh::mesher {
 
+Subcomplex::Subcomplex(const Domain& domain, const RegularTriangulation& tri, const std::vector<MVertex>& vertices,
+                       const ProtectingBalls& balls)
+    : dom_(domain), tri_(tri), verts_(vertices), balls_(balls) {
+  facet_dt_.resize(domain.p.facets.size());
+  // Each facet's planar triangulation projects along the largest component of
+  // its normal and tests circles in the plane's metric (see PlanarDelaunay):
+  // points collinear in 3D stay collinear there, and no point is hidden.
+  for (std::size_t f = 0; f < domain.p.facets.size(); ++f) facet_dt_[f].set_plane(domain.p.facets[f].normal);
+  vertex_sectors_.assign(domain.p.vertices.size(), {});
+}
+
 // ---- bookkeeping -----------------------------------------------------------------
 
-void Mesher::add_segment(const Subsegment& s) {
+std::uint64_t Subcomplex::add_segment(const Subsegment& s) {
   const std::uint64_t k = edge_key(s.a, s.b);
   segs_[k] = s;
   vertex_segs_[s.a].push_back(k);
@@ -21,10 +32,17 @@ void Mesher::add_segment(const Subsegment& s) {
     if (sector_segs_.size() <= std::size_t(s.sector)) sector_segs_.resize(s.sector + 1);
     sector_segs_[s.sector].push_back(k);
   }
-  queues_.segments.push_back(k);
+  return k;
 }
 
-void Mesher::facets_of(int v, std::vector<int>& out) const {
+int Subcomplex::add_sector(int u, const Sector& s) {
+  const int sid = static_cast<int>(sectors_.size());
+  sectors_.push_back(s);
+  vertex_sectors_[u].push_back(sid);
+  return sid;
+}
+
+void Subcomplex::facets_of(int v, std::vector<int>& out) const {
   out.clear();
   const MVertex& m = verts_[v];
   switch (m.on) {
@@ -38,13 +56,13 @@ void Mesher::facets_of(int v, std::vector<int>& out) const {
   }
 }
 
-bool Mesher::on_one_edge(int v, int e) const {
+bool Subcomplex::on_one_edge(int v, int e) const {
   const MVertex& m = verts_[v];
   if (m.on == On::edge) return m.element == e;
   return m.on == On::vertex && (dom_.p.edges[e].a == m.element || dom_.p.edges[e].b == m.element);
 }
 
-bool Mesher::lies_in_facet(int f, const Tri& t) const {
+bool Subcomplex::lies_in_facet(int f, const Tri& t) const {
   // A triangle of the planar Delaunay triangulation is a subfacet when it lies
   // in the facet. Three vertices on one edge of P are collinear but for the
   // rounding of the points inserted on the edge: their sliver is no subfacet.
@@ -59,12 +77,12 @@ bool Mesher::lies_in_facet(int f, const Tri& t) const {
   return dom_.inside_facet(f, c);
 }
 
-void Mesher::subfacets_at(int f, int v, std::vector<Tri>& out) const {
+void Subcomplex::subfacets_at(int f, int v, std::vector<Tri>& out) const {
   facet_dt_[f].incident_triangles(v, out);
   out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }), out.end());
 }
 
-bool Mesher::is_subfacet(int f, const Tri& t) const {
+bool Subcomplex::is_subfacet(int f, const Tri& t) const {
   // A triangle of f's planar triangulation (found among the two on its edge
   // t[0] t[1]), then in f: the costlier test runs on that one triangle only.
   std::vector<Tri> around;
@@ -74,7 +92,7 @@ bool Mesher::is_subfacet(int f, const Tri& t) const {
   return false;
 }
 
-std::vector<Subfacet> Mesher::subfacets() const {
+std::vector<Subfacet> Subcomplex::subfacets() const {
   std::vector<Subfacet> out;
   for (int f = 0; f < static_cast<int>(facet_dt_.size()); ++f)
     for (const Tri& t : facet_dt_[f].triangles())
@@ -82,18 +100,23 @@ std::vector<Subfacet> Mesher::subfacets() const {
   return out;
 }
 
-int Mesher::insert(const Insertion& ins) {
-  if (ins.none) return -1;
-  const int before = tri_.number_of_vertices();
-  const int id = tri_.insert(ins.p, 0, ins.hint);
-  if (id < before) return -1;  // hidden or an existing vertex: nothing inserted
-  MVertex m;
-  m.on = ins.on;
-  m.element = ins.element;
-  m.sector = ins.sector;
-  m.angle = ins.angle;
-  m.ball = ins.ball;
-  verts_.push_back(m);
+bool Subcomplex::flat_on_facet(const Tet& t) const {
+  if (std::find(t.begin(), t.end(), kInfinite) != t.end()) return false;
+  std::vector<int> common, fs;
+  facets_of(t[0], common);
+  for (int k = 1; k < 4 && !common.empty(); ++k) {
+    facets_of(t[k], fs);
+    common.erase(std::remove_if(common.begin(), common.end(),
+                                [&](int f) { return std::find(fs.begin(), fs.end(), f) == fs.end(); }),
+                 common.end());
+  }
+  for (int f : common)
+    if (!dom_.is_box_facet(f)) return true;
+  return false;
+}
+
+void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::uint64_t>& new_segments) {
+  new_segments.clear();
   vertex_segs_.emplace_back();
   if (ins.has_segment) {
     const auto it = segs_.find(ins.split_segment);
@@ -112,20 +135,16 @@ int Mesher::insert(const Insertion& ins) {
       left.b = id;
       right.a = id;
       left.tb = right.ta = ins.angle;
-      add_segment(left);
-      add_segment(right);
+      new_segments.push_back(add_segment(left));
+      new_segments.push_back(add_segment(right));
     }
   }
   std::vector<int> fs;
   facets_of(id, fs);
   for (int f : fs) facet_dt_[f].insert(ins.p, id, ins.hint);
-  if (phase_ != Phase::initialize) ++inserted_;
-  enqueue_around(id);
-  if (verts_.size() >= opt_.max_vertices && stop_reason_.empty()) stop_reason_ = "limit";
-  return id;
 }
 
-std::vector<std::uint64_t> Mesher::shield_keys(int sector) const {
+std::vector<std::uint64_t> Subcomplex::shield_keys(int sector) const {
   if (std::size_t(sector) >= sector_segs_.size()) return {};
   std::vector<std::uint64_t> keys = sector_segs_[sector];
   std::sort(keys.begin(), keys.end());
@@ -143,7 +162,7 @@ bool in_diametric_ball(const Point3& x, const Point3& a, const Point3& b) {
 }
 }  // namespace
 
-bool Mesher::segment_encroached(const Subsegment& e) const {
+bool Subcomplex::segment_encroached(const Subsegment& e) const {
   if (e.in_ball) return false;
   const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
   // The points on the sphere of a vertex ball do not encroach its shield
@@ -159,9 +178,9 @@ bool Mesher::segment_encroached(const Subsegment& e) const {
   return false;
 }
 
-bool Mesher::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }
+bool Subcomplex::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }
 
-bool Mesher::subfacet_encroached(const Subfacet& h) const {
+bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
   Tet c1, c2;
   if (!tri_.facet_cells(h.v[0], h.v[1], h.v[2], c1, c2)) return true;
   // If a vertex lies inside the diametric ball of a Delaunay triangle, the
@@ -175,8 +194,8 @@ bool Mesher::subfacet_encroached(const Subfacet& h) const {
   return false;
 }
 
-void Mesher::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
-                                 std::vector<Subfacet>& facet_out) const {
+void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
+                                     std::vector<Subfacet>& facet_out) const {
   // When no subsegment (subfacet) is encroached by a vertex, a point that
   // encroaches one conflicts with a cell incident to it: along the pencil of
   // spheres through its vertices the power of the point is affine, negative at
@@ -224,7 +243,7 @@ void Mesher::encroached_by_point(const Point3& c, int hint, std::vector<std::uin
 
 // ---- SPLITE and SPLITF (section 4.2) ---------------------------------------------
 
-Insertion Mesher::splite(const Subsegment& e) const {
+Insertion Subcomplex::splite(const Subsegment& e) const {
   Insertion ins;
   ins.split_segment = edge_key(e.a, e.b);
   ins.has_segment = true;
@@ -246,7 +265,7 @@ Insertion Mesher::splite(const Subsegment& e) const {
   return ins;
 }
 
-Insertion Mesher::splitf(const Subfacet& h) {
+Insertion Subcomplex::splitf(const Subfacet& h) const {
   double r2;
   const Point3 c = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
   // Vertex balls are kept empty (section 4.1): a circumcenter inside the ball
@@ -322,7 +341,7 @@ Insertion Mesher::splitf(const Subfacet& h) {
 
 // ---- ENCROACH (section 4.3) --------------------------------------------------------
 
-Insertion Mesher::encroach(const Point3& c, int hint) {
+Insertion Subcomplex::encroach(const Point3& c, int hint) const {
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
   encroached_by_point(c, hint, segs, facets);
@@ -359,22 +378,22 @@ Insertion Mesher::encroach(const Point3& c, int hint) {
   return ins;
 }
 
-bool Mesher::guarded(const Subfacet& h) const {
+bool Subcomplex::guarded(const Subfacet& h) const {
   // A subfacet is guarded when its diametric ball lies inside a protecting ball.
   double r2;
   const Point3 c = circumcenter(tri_.point(h.v[0]), tri_.point(h.v[1]), tri_.point(h.v[2]), r2);
   return balls_.guards(c, r2);
 }
 
-double Mesher::nearest_neighbour(int v) const {
+double nearest_neighbour(const RegularTriangulation& tri, int v) {
   std::vector<int> adj;
-  tri_.adjacent_vertices(v, adj);
+  tri.adjacent_vertices(v, adj);
   double best = std::numeric_limits<double>::infinity();
-  for (int u : adj) best = std::min(best, dist2(tri_.point(u), tri_.point(v)));
+  for (int u : adj) best = std::min(best, dist2(tri.point(u), tri.point(v)));
   return std::sqrt(best);
 }
 
-bool Mesher::conforms() const {
+bool Subcomplex::conforms() const {
   for (const auto& [k, s] : segs_)
     if (!tri_.is_edge(s.a, s.b)) return false;
   for (const Subfacet& h : subfacets())

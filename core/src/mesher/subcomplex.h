@@ -1,19 +1,29 @@
-// wqmesh: the vocabulary of the subcomplex (private; paper, section 4): the
-// vertices of V and where they lie, subsegments (of the edges of P, and the
-// shield subsegments of the vertex balls, section 4.1), subfacets (the
-// triangles of the planar Delaunay triangulation of V ∩ F that lie in F), and
-// the point SPLITE, SPLITF or ENCROACH decides to insert.
+// wqmesh: the subcomplex (private; paper, section 4): the vertices of V and
+// where they lie, subsegments (of the edges of P, and the shield subsegments
+// of the vertex balls, section 4.1), subfacets (the triangles of the planar
+// Delaunay triangulation of V ∩ F that lie in F), the point SPLITE, SPLITF or
+// ENCROACH decides to insert, and class Subcomplex, which keeps them as V
+// grows and answers the encroachment tests of the rules.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
+#include "geometry.h"
+#include "mesher/domain.h"
+#include "mesher/protecting_balls.h"
+#include "triangulation.h"
 #include "wqmesh/types.h"
 
 namespace wqmesh::mesher {
+
+// The shared geometry (vectors, circumcenters) under the mesher's names.
+using namespace geometry;
 
 using Tri = std::array<int, 3>;
 
@@ -89,6 +99,84 @@ struct Insertion {
   int ball = -1;
   int hint = -1;
   bool none = false;  ///< nothing to insert (see SPLITF in a vertex ball)
+};
+
+/// N(v): the distance from v to its nearest neighbour in Del V.
+double nearest_neighbour(const RegularTriangulation& tri, int v);
+
+// ---- The subcomplex ------------------------------------------------------------
+/// The subsegments (with the shield subsegments of each sector), the sectors,
+/// and the planar triangulations of the facets whose triangles lying in the
+/// facet are the subfacets; SPLITE, SPLITF (section 4.2), ENCROACH (section
+/// 4.3) and the encroachment tests (section 4). It reads V (the triangulation
+/// and where each vertex lies) and the protecting balls, which others own,
+/// and changes only when told of a new vertex (insert_vertex) or feature.
+class Subcomplex {
+ public:
+  Subcomplex(const Domain& domain, const RegularTriangulation& tri, const std::vector<MVertex>& vertices,
+             const ProtectingBalls& balls);
+
+  // ---- building it (INITIALIZE) and keeping it as V grows ----
+  /// Adds subsegment s; returns its key (to be queued for rules 1 and 4).
+  std::uint64_t add_segment(const Subsegment& s);
+  /// Adds sector s of the vertex ball of u (section 4.1); returns its id.
+  int add_sector(int u, const Sector& s);
+  /// Vertex id joined V (its MVertex is vertices[id]): the subsegment
+  /// ins.split_segment, if any, is split at it, and id joins the planar
+  /// triangulations of its facets. `new_segments` gets the keys of the two
+  /// halves (to be queued), in order.
+  void insert_vertex(int id, const Insertion& ins, std::vector<std::uint64_t>& new_segments);
+
+  // ---- what it holds ----
+  const std::unordered_map<std::uint64_t, Subsegment>& subsegments() const { return segs_; }
+  const Subsegment& subsegment(std::uint64_t key) const { return segs_.at(key); }
+  /// The keys of the subsegments with endpoint v.
+  const std::vector<std::uint64_t>& subsegments_at(int v) const { return vertex_segs_[v]; }
+  const Sector& sector(int sid) const { return sectors_[sid]; }
+  /// Facet f's planar Delaunay triangulation of V ∩ f.
+  const PlanarDelaunay& facet_triangulation(int f) const { return facet_dt_[f]; }
+  std::vector<Subfacet> subfacets() const;
+  /// The facets of P holding vertex v.
+  void facets_of(int v, std::vector<int>& out) const;
+  /// The subfacets of facet f at vertex v.
+  void subfacets_at(int f, int v, std::vector<Tri>& out) const;
+  bool is_subfacet(int f, const Tri& t) const;
+  bool lies_in_facet(int f, const Tri& t) const;
+  /// All four vertices on one input facet: a flat tet lying in the facet
+  /// (rounding of the points inserted on it), inside neither region.
+  bool flat_on_facet(const Tet& t) const;
+
+  // ---- the procedures and tests of the rules ----
+  Insertion splite(const Subsegment& e) const;
+  Insertion splitf(const Subfacet& h) const;
+  /// The point ENCROACH (section 4.3) returns for c.
+  Insertion encroach(const Point3& c, int hint) const;
+  bool segment_encroached(const Subsegment& e) const;  ///< by a vertex of V (on or inside)
+  bool subfacet_present(const Subfacet& h) const;
+  bool subfacet_encroached(const Subfacet& h) const;  ///< by a vertex (strictly inside)
+  /// Subsegments and subfacets encroached by a point, among the features of
+  /// the cells the point conflicts with (see the argument in subcomplex.cpp).
+  void encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& segs,
+                           std::vector<Subfacet>& facets) const;
+  /// A subfacet whose diametric ball lies inside a protecting ball.
+  bool guarded(const Subfacet& h) const;
+  /// Whether every subsegment and subfacet is in the triangulation.
+  bool conforms() const;
+
+ private:
+  std::vector<std::uint64_t> shield_keys(int sector) const;
+  bool on_one_edge(int v, int e) const;  ///< v lies on edge e of P (or is an endpoint)
+
+  const Domain& dom_;
+  const RegularTriangulation& tri_;
+  const std::vector<MVertex>& verts_;
+  const ProtectingBalls& balls_;
+  std::unordered_map<std::uint64_t, Subsegment> segs_;
+  std::vector<std::vector<std::uint64_t>> vertex_segs_;
+  std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
+  std::vector<PlanarDelaunay> facet_dt_;
+  std::vector<Sector> sectors_;
+  std::vector<std::vector<int>> vertex_sectors_;  ///< per P vertex
 };
 
 }  // namespace wqmesh::mesher

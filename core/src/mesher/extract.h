@@ -1,0 +1,49 @@
+// wqmesh: the mesh WQMESH returns (private; paper, section 4.3): the tets of
+// Del V inside the polyhedron, found by a flood fill across the walls (the
+// input subfacets), their classes (classify.cpp) and statistics (extract.cpp).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <vector>
+
+#include "mesher/domain.h"
+#include "mesher/protecting_balls.h"
+#include "mesher/subcomplex.h"
+#include "mesher/work_meter.h"
+#include "triangulation.h"
+#include "wqmesh/mesher.h"
+
+namespace wqmesh::mesher {
+
+/// 1 for the cells of g inside the polyhedron. `scan`: poll `meter` while
+/// labelling (a phase's scan); the labels are then unusable if it stops.
+std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, const RegularTriangulation::CellGraph& g,
+                                  WorkMeter& meter, bool scan = false);
+
+/// The extraction of the mesh from V, its triangulation and the subcomplex.
+class Extract {
+ public:
+  /// `nn`: N(v) for every vertex, as PUMP measured it at the end of REFINE;
+  /// measured (and stored there) when its size is not V's.
+  Extract(const Domain& domain, const MeshOptions& options, const RegularTriangulation& tri,
+          const std::vector<MVertex>& vertices, const Subcomplex& sub, const ProtectingBalls& balls,
+          std::vector<double>& nn, WorkMeter& meter)
+      : dom_(domain), opt_(options), tri_(tri), verts_(vertices), sub_(sub), balls_(balls), nn_(nn), meter_(meter) {}
+  /// Interior tets, classes (classify_tets), statistics. `stoppable`: poll while extracting
+  /// (the count of QMESH's slivers before PUMP), so that a cancel takes
+  /// effect within a bounded amount of work; the result is then empty, with
+  /// `stopped` set, once the run must stop.
+  MeshResult run(bool stoppable = false);
+
+ private:
+  const Domain& dom_;
+  const MeshOptions& opt_;
+  const RegularTriangulation& tri_;
+  const std::vector<MVertex>& verts_;
+  const Subcomplex& sub_;
+  const ProtectingBalls& balls_;
+  std::vector<double>& nn_;
+  WorkMeter& meter_;
+};
+
+}  // namespace wqmesh::mesher

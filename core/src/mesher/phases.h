@@ -1,0 +1,114 @@
+// wqmesh: the phases INITIALIZE, CONFORM and REFINE of WQMESH (private; paper,
+// section 4.3), one class and file each; PUMP is in pump.h, the extraction in
+// extract.h. Each is handed the pieces it uses (mesher.h lists them) and
+// runs once, in Mesher's order.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesher/domain.h"
+#include "mesher/mesher.h"
+#include "mesher/protecting_balls.h"
+#include "mesher/queues.h"
+#include "mesher/subcomplex.h"
+#include "mesher/work_meter.h"
+#include "triangulation.h"
+#include "wqmesh/mesher.h"
+
+namespace wqmesh::mesher {
+
+/// INITIALIZE (sections 4.1, 4.3; initialize.cpp): the vertices of P, the
+/// vertex-ball points on its edges, the subsegments, the sectors with their
+/// shield subsegments and the SOS splits.
+class Initialize {
+ public:
+  Initialize(const Domain& domain, Subcomplex& sub, Queues& queues, Inserter& inserter, WorkMeter& meter)
+      : dom_(domain), sub_(sub), queues_(queues), ins_(inserter), meter_(meter) {}
+  void run();
+
+ private:
+  int edge_between(int u, int w) const;
+
+  const Domain& dom_;
+  Subcomplex& sub_;
+  Queues& queues_;
+  Inserter& ins_;
+  WorkMeter& meter_;
+};
+
+/// CONFORM (section 4.3; conform.cpp): rules 1-3 until the edges and facets
+/// of P are unions of Delaunay edges and triangles, then the protecting balls.
+class Conform {
+ public:
+  Conform(const Domain& domain, const MeshOptions& options, const RegularTriangulation& tri, const Subcomplex& sub,
+          Queues& queues, Inserter& inserter, WorkMeter& meter, ProtectingBalls& balls)
+      : dom_(domain),
+        opt_(options),
+        tri_(tri),
+        sub_(sub),
+        queues_(queues),
+        ins_(inserter),
+        meter_(meter),
+        balls_(balls) {}
+  void run();
+
+ private:
+  /// One pass of rule 3 over the sharp subsegments; whether it inserted.
+  bool rule3_pass();
+  /// The keys of the sharp subsegments, in increasing order.
+  std::vector<std::uint64_t> sharp_subsegment_keys() const;
+  /// With max_size: splits sharp subsegments longer than 2/3 max_size before
+  /// the protecting balls are fixed; false if stopped.
+  bool split_long_sharp_subsegments();
+  void make_protecting_balls();  ///< end of CONFORM (section 4.3)
+
+  const Domain& dom_;
+  const MeshOptions& opt_;
+  const RegularTriangulation& tri_;
+  const Subcomplex& sub_;
+  Queues& queues_;
+  Inserter& ins_;
+  WorkMeter& meter_;
+  ProtectingBalls& balls_;
+};
+
+/// REFINE (section 4.3; refine.cpp): rules 4-5 (in the queues), rule 6
+/// (skinny tets) and rule 7 (preparing PUMP).
+class Refine {
+ public:
+  Refine(const Domain& domain, const MeshOptions& options, const RegularTriangulation& tri,
+         const std::vector<MVertex>& vertices, const Subcomplex& sub, const ProtectingBalls& balls, Queues& queues,
+         Inserter& inserter, WorkMeter& meter)
+      : dom_(domain),
+        opt_(options),
+        tri_(tri),
+        verts_(vertices),
+        sub_(sub),
+        balls_(balls),
+        queues_(queues),
+        ins_(inserter),
+        meter_(meter) {}
+  void run();
+
+ private:
+  /// Rule 6 for the queued tet t; whether a point was inserted.
+  bool rule6_split_skinny_tet(const Tet& t, CellRef ref);
+  /// One pass of rule 7 over the sliver vertices; whether it inserted.
+  bool rule7_pass();
+  /// The queued rules 4-6 (Queues::process with rule 6); false if stopped.
+  bool process_queues();
+
+  const Domain& dom_;
+  const MeshOptions& opt_;
+  const RegularTriangulation& tri_;
+  const std::vector<MVertex>& verts_;
+  const Subcomplex& sub_;
+  const ProtectingBalls& balls_;
+  Queues& queues_;
+  Inserter& ins_;
+  WorkMeter& meter_;
+};
+
+}  // namespace wqmesh::mesher

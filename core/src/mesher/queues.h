@@ -1,0 +1,76 @@
+// wqmesh: the work queues of CONFORM and REFINE (private; paper, section
+// 4.3): the subsegments, subfacets and tets that rules 1-2 (CONFORM) and 4-6
+// (REFINE) may have to split, filled around every inserted vertex, and the
+// loop that applies the queued rules in priority order (queues.cpp).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <unordered_map>
+#include <utility>
+
+#include "mesher/domain.h"
+#include "mesher/rules.h"
+#include "mesher/subcomplex.h"
+#include "mesher/work_meter.h"
+#include "triangulation.h"
+
+namespace wqmesh::mesher {
+
+class Inserter;
+
+class Queues {
+ public:
+  Queues(const Domain& domain, const RegularTriangulation& tri, const Subcomplex& sub, WorkMeter& meter)
+      : dom_(domain), tri_(tri), sub_(sub), meter_(meter) {}
+
+  /// Queues subsegment k (rules 1 and 4).
+  void push_segment(std::uint64_t k) { segments_.push_back(k); }
+  /// Queues tet t again (rule 6).
+  void push_tet(const Tet& t, CellRef ref) { tets_.push_back({t, ref}); }
+  /// The start of CONFORM (and, with the tets, of REFINE): every subsegment,
+  /// in key order, and every subfacet; with `tets`, every finite cell.
+  void fill(bool tets);
+  /// The upkeep of an insertion: queues the features and (in REFINE) the
+  /// cells around the new vertex v that a rule may have to split.
+  void enqueue_around(int v);
+  /// Rule 6 for a queued tet; whether a point was inserted (refine.cpp).
+  using Rule6 = std::function<bool(const Tet& t, CellRef ref)>;
+  /// Applies the queued rules until the queues are empty: rules 1-2, or with
+  /// `rule6` (REFINE) rules 4-6, each only when no smaller one applies.
+  /// Inserts through `inserter`. False if the run stopped.
+  bool process(Inserter& inserter, const Rule6& rule6 = {});
+  /// A feature (a subfacet, or a tet by three of its vertices) whose split
+  /// was deferred to another: whether it may be looked at again (at most
+  /// Caps::kRetries times; past that the cap is counted).
+  bool may_retry(const Tri& t);
+
+ private:
+  /// Rules 1 and 4: SPLITE of the queued subsegment k if it is encroached.
+  void split_encroached_subsegment(Inserter& inserter, std::uint64_t k, Rule rule);
+  /// Rule 2: a subfacet of B that is encroached, or one of the input that does
+  /// not appear in Del V.
+  bool rule2_needs_split(const Subfacet& h) const;
+  /// Rule 5: a non-guarded subfacet that is encroached, or a guarded one that
+  /// does not appear in Del V.
+  bool rule5_needs_split(const Subfacet& h) const;
+  /// SPLITF(h) for rule 2 or 5; h is queued again when SPLITF split a
+  /// subsegment instead (at most Caps::kRetries times).
+  void split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule);
+
+  const Domain& dom_;
+  const RegularTriangulation& tri_;
+  const Subcomplex& sub_;
+  WorkMeter& meter_;
+  std::deque<std::uint64_t> segments_;        ///< rules 1 and 4
+  std::deque<Subfacet> subfacets_;            ///< rules 2 and 5
+  std::deque<std::pair<Tet, CellRef>> tets_;  ///< rule 6
+  /// How often a subfacet (or a tet, by three of its vertices) was looked at
+  /// again after its split was deferred to another feature; bounded by
+  /// Caps::kRetries so that no feature keeps the refinement busy forever.
+  std::unordered_map<Tri, int, TriHash> retries_;
+};
+
+}  // namespace wqmesh::mesher

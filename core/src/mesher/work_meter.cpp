@@ -1,0 +1,59 @@
+// wqmesh: the work meter (beyond the paper, issue 10): the steps and work
+// units every phase counts, the watchdog, the progress reports.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesher/work_meter.h"
+
+#include <string>
+
+namespace wqmesh::mesher {
+
+bool WorkMeter::tick() {
+  ++steps_;
+  step_done();
+  if (steps_ % kPollSteps == 0) next_poll_ = work_;  // a progress call at least every kPollSteps steps
+  return poll(0, false);
+}
+
+bool WorkMeter::poll(std::uint64_t units, bool in_step) {
+  work_ += units;
+  if (in_step) {
+    step_work_ += units;
+    if (step_work_ > opt_.stall_work && stop_reason_.empty()) {
+      static const char* kNames[] = {"initialize", "conform", "refine", "pump", "done"};
+      stop_reason_ = "stalled";
+      stop_message_ = std::string("a step of ") + kNames[int(phase_)] + " (step " + std::to_string(steps_ + 1) +
+                      ", at " + std::to_string(verts_.size()) + " vertices) did more than " +
+                      std::to_string(opt_.stall_work) +
+                      " units of work without finishing: the stuck-step watchdog ended the run";
+    }
+  }
+  if (work_ >= next_poll_) {
+    next_poll_ = work_ + kPollWork;
+    report_progress();
+  }
+  return stop_reason_.empty();
+}
+
+RegularTriangulation::CellGraph WorkMeter::scan_cell_graph(const RegularTriangulation& tri) {
+  return tri.cell_graph([this](std::size_t cells) { return poll(cells, false); });
+}
+
+void WorkMeter::report_progress() {
+  if (progress_) {
+    Progress p;
+    p.phase = phase_ == Phase::conform  ? "conform"
+              : phase_ == Phase::refine ? "refine"
+              : phase_ == Phase::pump   ? "pump"
+                                        : "initialize";
+    p.vertices = verts_.size();
+    p.steps = steps_;
+    // Refinement has no known end; the fraction grows with the vertex count
+    // towards the limit (an estimate), inside the phase's share of the run.
+    const double base = phase_ == Phase::conform ? 0.05 : phase_ == Phase::refine ? 0.3 : 0.8;
+    const double share = phase_ == Phase::conform ? 0.25 : phase_ == Phase::refine ? 0.5 : 0.15;
+    p.fraction = base + share * (1 - 1 / (1 + double(steps_) / 20000));
+    if (!progress_(p) && stop_reason_.empty()) stop_reason_ = "cancelled";
+  }
+}
+
+}  // namespace wqmesh::mesher
