@@ -65,9 +65,7 @@ constexpr const char* kUsage =
     "usage: wqmesh_mesh3_peer IN --size S [-o OUT.mesh]\n"
     "       wqmesh_mesh3_peer IN --target-tets N [--tolerance T] [--max-steps K]\n";
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// The input as a closed triangle mesh, outward oriented; throws
 /// std::runtime_error when it cannot be made one.
@@ -103,8 +101,7 @@ C3t3 mesh_at(const Domain& domain, CGAL::Random& rng, double s) {
   rng = CGAL::Random(0);
   CGAL::get_default_random() = CGAL::Random(0);
   const Criteria criteria(params::edge_size = s, params::facet_angle = 25, params::facet_size = s,
-                          params::facet_distance = s / 10, params::cell_radius_edge_ratio = 2.2,
-                          params::cell_size = s);
+                          params::facet_distance = s / 10, params::cell_radius_edge_ratio = 2.2, params::cell_size = s);
   return CGAL::make_mesh_3<C3t3>(domain, criteria, params::perturb(), params::exude());
 }
 
@@ -120,8 +117,8 @@ void write_medit(const std::string& path, const C3t3& c3t3) {
   out << "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n" << vertices.size() << '\n';
   for (const Tr::Vertex_handle& v : vertices) {
     const K::Point_3 p = c3t3.triangulation().geom_traits().construct_point_3_object()(v->point());
-    out << wqmesh::format_double(p.x()) << ' ' << wqmesh::format_double(p.y()) << ' '
-        << wqmesh::format_double(p.z()) << " 0\n";
+    out << wqmesh::format_double(p.x()) << ' ' << wqmesh::format_double(p.y()) << ' ' << wqmesh::format_double(p.z())
+        << " 0\n";
   }
   out << "\nTetrahedra\n" << c3t3.number_of_cells_in_complex() << '\n';
   for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c)
