@@ -97,7 +97,7 @@ export function runCheck(module, bytes, options) {
 }
 
 /** The phases of a run, in order. */
-export const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract'];
+export const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract', 'improve'];
 
 /**
  * Meshes `bytes`; `onProgress`, when given, receives { phase, vertices,

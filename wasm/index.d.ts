@@ -274,6 +274,13 @@ export interface MeshOptions {
   /** false: QMESH alone, no rule 7 and no PUMP (default true). `--no-pump`. */
   pump?: boolean;
   /**
+   * Beyond the paper: the improvement phase after PUMP (flips, smoothing of
+   * interior Steiner vertices, interior insertion; the boundary stays as it
+   * is), which raises the smallest dihedral angle (default true); false: the
+   * WQMESH output of the paper. `--no-improve`. See `stats.improve`.
+   */
+  improve?: boolean;
+  /**
    * The run stops with `stats.stopped: "limit"` at this many vertices, a
    * whole number in [8, 1e9] (default 1000000). A limit below the vertices
    * INITIALIZE alone inserts (the input vertices, the box corners and the
@@ -307,7 +314,7 @@ export interface MeshOptions {
 }
 
 /** A phase of a run, in the order they come. */
-export type Phase = 'initialize' | 'conform' | 'refine' | 'pump' | 'extract';
+export type Phase = 'initialize' | 'conform' | 'refine' | 'pump' | 'extract' | 'improve';
 
 /** What {@link MeshControl.onProgress} receives. */
 export interface Progress {
@@ -410,7 +417,31 @@ export interface MeshStats {
   /** With `measureFloor`: time_s over delaunay_floor_s. */
   ratio_to_delaunay?: number;
   /** The options of the run, as the core names them. */
-  options: { rho0: number; theta_deg: number; pump: boolean; box_margin: number; max_vertices: number; max_size: number };
+  options: { rho0: number; theta_deg: number; pump: boolean; box_margin: number; max_vertices: number; max_size: number; improve: boolean };
+  /**
+   * Beyond the paper: what the improvement phase did ({@link MeshOptions.improve};
+   * `ran` false and every count 0 when it did not run: with `improve: false`, or
+   * on a stopped or non-conforming run). Counts of accepted operations, the
+   * smallest dihedral angle (degrees) before and after, and the class counts
+   * of the mesh before it (the top-level counts are those after).
+   */
+  improve: {
+    ran: boolean;
+    passes: number;
+    flips23: number;
+    flips32: number;
+    flips44: number;
+    flips22: number;
+    edge_removals: number;
+    smoothed: number;
+    inserted: number;
+    min_dihedral_before: number;
+    min_dihedral_after: number;
+    slivers_before: number;
+    skinny_before: number;
+    near_small_angle_before: number;
+    violations_before: number;
+  };
   /** Points inserted by each rule: [0] INITIALIZE, [i] rule i (1..7). */
   rule_points: number[];
   /** How often a named loop cap or work budget of the mesher was reached

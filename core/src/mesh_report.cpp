@@ -52,7 +52,18 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.key("options").begin_object();
   j.field("rho0", options.rho0).field("theta_deg", options.theta_deg).field("pump", options.pump);
   j.field("box_margin", options.box_margin).field("max_vertices", options.max_vertices);
-  j.field("max_size", options.max_size);
+  j.field("max_size", options.max_size).field("improve", options.improve);
+  j.end_object();
+  // Beyond the paper: the improvement phase (MeshOptions::improve).
+  const ImproveStats& im = r.improve;
+  j.key("improve").begin_object();
+  j.field("ran", im.ran).field("passes", im.passes);
+  j.field("flips23", im.flips23).field("flips32", im.flips32).field("flips44", im.flips44);
+  j.field("flips22", im.flips22).field("edge_removals", im.edge_removals);
+  j.field("smoothed", im.smoothed).field("inserted", im.inserted);
+  j.field("min_dihedral_before", im.min_dihedral_before).field("min_dihedral_after", im.min_dihedral_after);
+  j.field("slivers_before", im.slivers_before).field("skinny_before", im.skinny_before);
+  j.field("near_small_angle_before", im.near_small_angle_before).field("violations_before", im.violations_before);
   j.end_object();
   j.key("rule_points").begin_array();
   for (std::size_t n : r.rule_points) j.value(n);

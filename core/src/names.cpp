@@ -32,6 +32,7 @@ const char* to_string(MeshPhase phase) {
     case MeshPhase::refine: return "refine";
     case MeshPhase::pump: return "pump";
     case MeshPhase::extract: return "extract";
+    case MeshPhase::improve: return "improve";
   }
   return "unknown";
 }
@@ -65,7 +66,7 @@ const std::vector<StopReason>& all_stop_reasons() {
 
 const std::vector<MeshPhase>& all_mesh_phases() {
   static const std::vector<MeshPhase> all = {MeshPhase::initialize, MeshPhase::conform, MeshPhase::refine,
-                                             MeshPhase::pump, MeshPhase::extract};
+                                             MeshPhase::pump, MeshPhase::extract, MeshPhase::improve};
   return all;
 }
 

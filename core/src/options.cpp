@@ -31,6 +31,9 @@ const std::vector<OptionSpec>& option_table() {
       {"sliverAngle", "--sliver-angle", OptionType::number, 0, 90, 3, false, 0,
        "theta of rule 7 and PUMP, degrees: tets with a dihedral angle at most theta are slivers"},
       {"pump", "--no-pump", OptionType::boolean, 0, 1, 1, false, 0, "false: QMESH alone (no rule 7, no PUMP)"},
+      {"improve", "--no-improve", OptionType::boolean, 0, 1, 1, false, 0,
+       "beyond the paper: the improvement phase after PUMP (flips, smoothing, insertion inside; the boundary "
+       "kept); false: the WQMESH output of the paper"},
       {"maxVertices", "--max-vertices", OptionType::integer, 8, 1e9, 1e6, false, 0,
        "the run stops (stopped \"limit\", exit code 3) when the vertex count reaches it"},
       {"maxSize", "--max-size", OptionType::number, 0, 1e300, 0, false, 0,
@@ -96,6 +99,8 @@ void apply_option(RunOptions& o, const OptionSpec& spec, double value) {
     o.mesh.theta_deg = value;
   else if (n == "pump")
     o.mesh.pump = value != 0;
+  else if (n == "improve")
+    o.mesh.improve = value != 0;
   else if (n == "maxVertices")
     o.mesh.max_vertices = static_cast<std::size_t>(value);
   else if (n == "maxSize")
@@ -113,6 +118,7 @@ double option_value(const RunOptions& o, const OptionSpec& spec) {
   if (n == "rho") return o.mesh.rho0;
   if (n == "sliverAngle") return o.mesh.theta_deg;
   if (n == "pump") return o.mesh.pump ? 1 : 0;
+  if (n == "improve") return o.mesh.improve ? 1 : 0;
   if (n == "maxVertices") return static_cast<double>(o.mesh.max_vertices);
   if (n == "maxSize") return o.mesh.max_size;
   if (n == "measureFloor") return o.mesh.measure_floor ? 1 : 0;

@@ -53,7 +53,7 @@ TEST(Names, TheStringsOfTheJsonAndTheJavaScriptPackageAreKept) {
   EXPECT_STREQ(to_string(StopReason::stalled), "stalled");
   std::string phases;
   for (MeshPhase p : all_mesh_phases()) phases += std::string(to_string(p)) + " ";
-  EXPECT_EQ(phases, "initialize conform refine pump extract ");
+  EXPECT_EQ(phases, "initialize conform refine pump extract improve ");
   EXPECT_STREQ(to_string(InputErrorKind::out_of_range), "out_of_range");
   EXPECT_EQ(static_cast<int>(TetClass::violation), 3);
 }

@@ -43,7 +43,7 @@ const work = mkdtempSync(join(tmpdir(), 'wqmesh-package-api-'));
 after(() => rmSync(work, { recursive: true, force: true }));
 
 const example = (name) => readFileSync(join(root, 'examples/models', name));
-const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract'];
+const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract', 'improve'];
 
 function signedVolume(v, t, name) {
   const { total, firstBad } = tetVolumes(v, t);

@@ -37,6 +37,11 @@ struct MeshOptions {
   /// the bound holds next to sharp edges too. Tets whose circumcenter lies in
   /// a vertex ball keep a circumradius up to its radius f(u)/4.
   double max_size = 0;
+  /// Beyond the paper: the improvement phase after PUMP (flips, smoothing of
+  /// interior Steiner vertices, interior insertion; core/src/mesher/improve.h)
+  /// raises the smallest dihedral angle while the boundary stays as it is.
+  /// false: the WQMESH output of the paper, bit for bit.
+  bool improve = true;
   /// PUMP visits the sliver vertices in passes; it stops after a pass that
   /// improves nothing or after this many passes.
   int max_pump_passes = 4;
@@ -97,6 +102,20 @@ struct PhaseStats {
   std::size_t points_inserted = 0;
 };
 
+/// What the improvement phase did (MeshResult::improve; all 0 when it did
+/// not run). min_dihedral_before/after: the smallest dihedral angle of the
+/// mesh before and after it, degrees. The class counts *_before: those of
+/// the mesh before it.
+struct ImproveStats {
+  bool ran = false;
+  int passes = 0;
+  std::size_t flips23 = 0, flips32 = 0, flips44 = 0, flips22 = 0, edge_removals = 0, smoothed = 0, inserted = 0;
+  double min_dihedral_before = 0, min_dihedral_after = 0;
+  std::size_t slivers_before = 0, skinny_before = 0, near_small_angle_before = 0, violations_before = 0;
+  /// Operations accepted in all (a mesh with none is the input mesh as it was).
+  std::size_t changes() const { return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted; }
+};
+
 struct MeshResult {
   /// The interior tets (weighted: mesh.weights), their boundary triangles with
   /// the input facet of each.
@@ -137,6 +156,8 @@ struct MeshResult {
   /// How often a loop cap of the mesher was reached (beyond the paper: each
   /// bounds a loop the paper lets run to its end; see CONTRIBUTING.md).
   std::size_t caps_reached = 0;
+  /// The improvement phase (MeshOptions::improve).
+  ImproveStats improve;
 };
 
 /// A lower estimate of the vertices WQMESH needs for the two input edges that

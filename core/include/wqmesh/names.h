@@ -25,8 +25,9 @@ enum class StopReason { done, limit, cancelled, stalled };
 
 /// The phases of a run in the order they come (section 4.3: INITIALIZE,
 /// CONFORM with rules 1-3, REFINE with rules 4-7, PUMP), then the extraction
-/// of the interior tets. Progress::phase holds the name.
-enum class MeshPhase { initialize, conform, refine, pump, extract };
+/// of the interior tets, then (beyond the paper, MeshOptions::improve) the
+/// improvement phase. Progress::phase holds the name.
+enum class MeshPhase { initialize, conform, refine, pump, extract, improve };
 
 /// The output formats of the writers (output.h): Medit .mesh, VTK .vtu,
 /// TetGen .node/.ele/.face/.edge. Names "medit", "vtu", "tetgen" (those of
@@ -34,7 +35,7 @@ enum class MeshPhase { initialize, conform, refine, pump, extract };
 enum class OutputFormat { medit, vtu, tetgen };
 
 /// Stable names: "" / "limit" / "cancelled" / "stalled"; "initialize" ...
-/// "extract"; error_kind_name (error.h) for InputErrorKind; "good",
+/// "extract", "improve"; error_kind_name (error.h) for InputErrorKind; "good",
 /// "skinny_near", "sliver_near", "violation" for TetClass; "medit", "vtu",
 /// "tetgen".
 const char* to_string(StopReason reason);

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "mesher/improve.h"
 #include "mesher/mesher.h"
 #include "scaling.h"
 
@@ -142,6 +143,23 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     s.name = "extract";
     s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
     phases.push_back(s);
+    // Beyond the paper (issue 14): the improvement phase (improve.h) on a
+    // finished, conforming run; then the classes again.
+    if (options.improve && r.stopped.empty() && r.conforming) {
+      const auto i0 = clock::now();
+      const std::size_t before = r.mesh.vertices.size();
+      if (!mesher::improve_phase(r, m.balls(), options, progress)) {
+        r = MeshResult();
+        r.stopped = "cancelled";
+        r.stop_message = "cancelled by the caller in the improvement phase; no mesh is returned";
+        r.protecting_balls = m.balls().all();
+      }
+      PhaseStats p;
+      p.name = "improve";
+      p.time_s = std::chrono::duration<double>(clock::now() - i0).count();
+      p.points_inserted = r.mesh.vertices.size() > before ? r.mesh.vertices.size() - before : 0;
+      phases.push_back(p);
+    }
   }
   r.phases = phases;
   if (r.stop_message.empty()) r.stop_message = m.meter().stop_message();  // "stalled"
@@ -153,12 +171,12 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   }
   r.input_points = plc.vertices.size();
   r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
-  r.points_inserted = m.vertices().size() - domain.p.vertices.size();
-  r.slivers_before_pump = options.pump ? slivers_qmesh : r.slivers;
+  r.points_inserted = m.vertices().size() - domain.p.vertices.size() + r.improve.inserted;
+  r.slivers_before_pump = options.pump ? slivers_qmesh : r.improve.ran ? r.improve.slivers_before : r.slivers;
   r.pumped_vertices = m.pumped_vertices();
   r.rule_points = m.inserter().rule_count();
   r.caps_reached = m.meter().caps_reached();
-  r.all_vertices = m.vertices().size();
+  r.all_vertices = m.vertices().size() + r.improve.inserted;
   if (options.measure_floor) {
     std::vector<Point3> points(m.vertices().size());
     for (std::size_t v = 0; v < points.size(); ++v) points[v] = m.triangulation().point(static_cast<int>(v));

@@ -1,0 +1,869 @@
+// wqmesh: the improvement phase after PUMP (beyond the paper; see improve.h
+// for the contract and Klingner and Shewchuk's Stellar for the operations).
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesher/improve.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "cgal_types.h"
+#include "geometry.h"
+#include "mesher/classify.h"
+#include "wqmesh/quality.h"
+
+namespace wqmesh::mesher {
+
+using geometry::cross;
+using geometry::dot;
+using geometry::norm;
+using geometry::sub;
+
+namespace {
+
+// The faces of a positively oriented tet (v0, v1, v2, v3), outward: face k
+// is opposite vertex k.
+constexpr int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+// The edges of a tet and, for edge e, the two other vertices.
+constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+using Tri = std::array<int, 3>;
+
+/// The rotation of an oriented triangle that starts at its smallest vertex
+/// (same orientation, canonical).
+Tri rotated(const Tri& f) {
+  const int m = f[0] < f[1] ? (f[0] < f[2] ? 0 : 2) : (f[1] < f[2] ? 1 : 2);
+  return {{f[m], f[(m + 1) % 3], f[(m + 2) % 3]}};
+}
+Tri reversed(const Tri& f) { return rotated({{f[0], f[2], f[1]}}); }
+
+Tri outward_face(const std::array<int, 4>& t, int k) {
+  return rotated({{t[kOutward[k][0]], t[kOutward[k][1]], t[kOutward[k][2]]}});
+}
+
+bool positive(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return CGAL::orientation(cgal::to_cgal(a), cgal::to_cgal(b), cgal::to_cgal(c), cgal::to_cgal(d)) == CGAL::POSITIVE;
+}
+
+/// R/l and R of tet abcd (infinite when it is flat).
+void radius_edge(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double& rl, double& R) {
+  double r2;
+  geometry::circumcenter(a, b, c, d, r2);
+  const double l2 = std::min({geometry::dist2(a, b), geometry::dist2(a, c), geometry::dist2(a, d),
+                              geometry::dist2(b, c), geometry::dist2(b, d), geometry::dist2(c, d)});
+  R = std::sqrt(r2);
+  rl = l2 > 0 ? std::sqrt(r2 / l2) : HUGE_VAL;
+}
+
+}  // namespace
+
+double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const Point3 u = sub(b, a), v = sub(c, a), w = sub(d, a), x = sub(c, b), y = sub(d, b), z = sub(d, c);
+  const Point3 m1 = cross(v, w);
+  const double D = dot(u, m1);  // 6 V
+  // Squared area normals; one square root at the end.
+  const double n0 = dot(cross(x, y), cross(x, y)), n1 = dot(m1, m1), n2 = dot(cross(u, w), cross(u, w)),
+               n3 = dot(cross(u, v), cross(u, v));
+  const double p23 = n2 * n3, p13 = n1 * n3, p12 = n1 * n2, p03 = n0 * n3, p02 = n0 * n2, p01 = n0 * n1;
+  if (!(p23 > 0 && p13 > 0 && p12 > 0 && p03 > 0 && p02 > 0 && p01 > 0)) return D < 0 ? -1 : 0;
+  // Edge ij lies on the faces opposite the two other vertices k and l.
+  const double s2 =
+      std::min({dot(u, u) / p23, dot(v, v) / p13, dot(w, w) / p12, dot(x, x) / p03, dot(y, y) / p02, dot(z, z) / p01});
+  return D * std::sqrt(s2);
+}
+
+Improver::Improver(MeshResult& r, double rho, double max_size, const std::function<bool()>& keep_going)
+    : r_(r), rho_(rho), max_size_(max_size), keep_going_(keep_going), P_(r.mesh.vertices) {
+  const TetMesh& m = r.mesh;
+  tets_ = m.tets;
+  q_.resize(tets_.size());
+  for (std::size_t t = 0; t < tets_.size(); ++t) {
+    const Tet& T = tets_[t];
+    q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+  }
+  bnd_ = m.boundary;
+  tried_.assign(tets_.size(), -1);
+  insert_tried_.assign(tets_.size(), -1);
+  vtime_.assign(P_.size(), 0);
+  smoothed_.assign(P_.size(), -1);
+  vtet_.assign(P_.size(), -1);
+  fixed_.assign(P_.size(), 0);
+  for (const auto& b : bnd_)
+    for (int v : b) fixed_[v] = 1;
+  for (std::size_t v = 0; v < P_.size() && v < r.input_vertex.size(); ++v)
+    if (r.input_vertex[v] >= 0) fixed_[v] = 1;
+  // Face adjacency: each oriented face meets its reverse in the neighbour.
+  struct Face {
+    Tri key;
+    int tet, k;
+  };
+  std::vector<Face> faces;
+  faces.reserve(4 * tets_.size() + bnd_.size());
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      faces.push_back({outward_face(tets_[t], k), int(t), k});
+      vtet_[tets_[t][k]] = int(t);
+    }
+  // A boundary triangle is outward: the tet's outward face equals it.
+  for (std::size_t b = 0; b < bnd_.size(); ++b) faces.push_back({reversed(bnd_[b]), -1 - int(b), -1});
+  auto unoriented = [](Tri f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  std::stable_sort(faces.begin(), faces.end(),
+                   [&](const Face& a, const Face& b) { return unoriented(a.key) < unoriented(b.key); });
+  // A face with neither a neighbour nor a boundary triangle (a mesh that is
+  // not closed) gets the code -1 - bnd_.size(), which names no triangle: it
+  // is never flipped and its vertices never move.
+  const int kOpen = -1 - int(bnd_.size());
+  nb_.assign(tets_.size(), {{kOpen, kOpen, kOpen, kOpen}});
+  for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
+    const Face &a = faces[i], &b = faces[i + 1];
+    if (unoriented(a.key) != unoriented(b.key)) continue;
+    if (a.tet >= 0) nb_[a.tet][a.k] = b.tet;
+    if (b.tet >= 0) nb_[b.tet][b.k] = a.tet;
+    ++i;
+  }
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    for (int k = 0; k < 4; ++k)
+      if (nb_[t][k] == kOpen)
+        for (int j = 0; j < 3; ++j) fixed_[tets_[t][kOutward[k][j]]] = 1;
+}
+
+void Improver::set_classes(const ProtectingBalls* balls, double theta_deg) {
+  balls_ = balls;
+  theta_deg_ = theta_deg;
+  sin_theta_ = std::sin(theta_deg * geometry::kPi / 180);
+}
+
+void Improver::touch(const Tet& T) {
+  for (int v : T) {
+    if (v >= int(vtime_.size())) vtime_.resize(v + 1, 0), smoothed_.resize(v + 1, -1);
+    vtime_[v] = clock_;
+  }
+}
+
+bool Improver::fresh_since(std::int64_t at, const Tet& T) const {
+  if (at < 0) return true;
+  for (int v : T)
+    if (v >= int(vtime_.size()) || vtime_[v] > at) return true;
+  return false;
+}
+
+bool Improver::poll() {
+  if (cancelled_) return false;
+  if (keep_going_ && !keep_going_()) cancelled_ = true;
+  return !cancelled_;
+}
+
+bool Improver::has(int t, int v) const {
+  const Tet& T = tets_[t];
+  return T[0] == v || T[1] == v || T[2] == v || T[3] == v;
+}
+
+int Improver::slot(int t, int v) const {
+  const Tet& T = tets_[t];
+  for (int k = 0; k < 4; ++k)
+    if (T[k] == v) return k;
+  return -1;
+}
+
+double Improver::worst() const {
+  double w = HUGE_VAL;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) w = std::min(w, q_[t]);
+  return w;
+}
+
+void Improver::star(int v, std::vector<int>& out) const {
+  out.clear();
+  const int s = v < int(vtet_.size()) ? vtet_[v] : -1;
+  if (s < 0 || !alive(s) || !has(s, v)) return;
+  out.push_back(s);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const int t = out[i];
+    for (int k = 0; k < 4; ++k) {
+      if (tets_[t][k] == v) continue;  // the face opposite v does not hold v
+      const int n = nb_[t][k];
+      if (n >= 0 && std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+    }
+  }
+}
+
+bool Improver::ring(int t, int a, int b, std::vector<int>& ts, std::vector<int>& vs) const {
+  // The tets around edge ab in order, with ring vertices r_i such that
+  // (a, b, r_i, r_i+1) is positive; false when the ring meets the boundary
+  // or is longer than kMaxRing.
+  const int i = slot(t, a), j = slot(t, b);
+  int k = -1, l = -1;
+  for (int s = 0; s < 4; ++s)
+    if (s != i && s != j) (k < 0 ? k : l) = s;
+  // (a, b, c, d) is an even permutation of t's order iff (i, j, k, l) is.
+  int perm[4] = {i, j, k, l}, inv = 0;
+  for (int x = 0; x < 4; ++x)
+    for (int y = x + 1; y < 4; ++y) inv += perm[x] > perm[y];
+  int c = tets_[t][k], d = tets_[t][l];
+  if (inv % 2) std::swap(c, d);
+  ts.assign(1, t);
+  vs.assign({c, d});
+  int cur = t, prev = c, last = d;
+  for (;;) {
+    const int n = nb_[cur][slot(cur, prev)];
+    if (n < 0) return false;
+    if (n == t) break;
+    int e = -1;
+    for (int s = 0; s < 4; ++s) {
+      const int v = tets_[n][s];
+      if (v != a && v != b && v != last) e = v;
+    }
+    ts.push_back(n);
+    vs.push_back(e);
+    if (int(ts.size()) > kMaxRing) return false;
+    prev = last;
+    last = e;
+    cur = n;
+  }
+  vs.pop_back();  // the last one is c again
+  return vs.size() == ts.size();
+}
+
+bool Improver::violation(const Tet& T) const {
+  if (balls_ == nullptr) return false;
+  const Point3 &a = P_[T[0]], &b = P_[T[1]], &c = P_[T[2]], &d = P_[T[3]];
+  double rl, R;
+  radius_edge(a, b, c, d, rl, R);
+  bool skinny = rl > rho_;
+  const std::vector<double>& w = r_.mesh.weights;
+  if (!skinny && !w.empty()) {
+    // The weighted R/l (the orthoradius over the shortest edge), as
+    // mesh_quality measures a weighted mesh; new vertices weigh 0.
+    const Point3 p4[4] = {{{0, 0, 0}}, sub(b, a), sub(c, a), sub(d, a)};
+    double w4[4];
+    for (int k = 0; k < 4; ++k) w4[k] = T[k] < int(w.size()) ? w[T[k]] : 0;
+    Point3 z;
+    double z2;
+    if (!geometry::orthosphere(p4, w4, z, z2)) return true;  // flat: no measure to trust
+    const double l2 = std::min({dot(p4[1], p4[1]), dot(p4[2], p4[2]), dot(p4[3], p4[3]), geometry::dist2(b, c),
+                                geometry::dist2(b, d), geometry::dist2(c, d)});
+    skinny = z2 > rho_ * rho_ * l2;
+  }
+  bool sliver = false;
+  if (!skinny && min_sine(a, b, c, d) < sin_theta_) sliver = tet_quality(a, b, c, d).min_dihedral_deg < theta_deg_;
+  if (!skinny && !sliver) return false;
+  double r2;
+  const Point3 zc = geometry::circumcenter(a, b, c, d, r2);
+  if (balls_->contains(zc)) return false;
+  const std::vector<double>& nn = r_.nearest_neighbour;
+  for (int k = 0; k < 4; ++k) {
+    const double n = T[k] < int(nn.size()) ? nn[T[k]] : 0;  // 0 for a new vertex until finish()
+    if (balls_->expansion_encroached(P_[T[k]], n * n / 9)) return false;
+  }
+  return true;
+}
+
+bool Improver::admissible(const Tet& T, double size_cap) const {
+  if (size_cap <= 0) return true;
+  double rl, R;
+  radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
+  return R <= size_cap;
+}
+
+bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new) const {
+  double worst_old = HUGE_VAL, size_cap = max_size_;
+  for (int t : old) worst_old = std::min(worst_old, q_[t]);
+  worst_new = HUGE_VAL;
+  for (const Tet& T : fresh) {
+    const double s = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    if (!(s > worst_old)) return false;
+    worst_new = std::min(worst_new, s);
+  }
+  for (const Tet& T : fresh)
+    if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
+  int violations = 0;
+  for (int t : old) {
+    violations += violation(tets_[t]);
+    if (max_size_ > 0) {
+      const Tet& T = tets_[t];
+      double rl, R;
+      radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
+      size_cap = std::max(size_cap, R);
+    }
+  }
+  for (const Tet& T : fresh) {
+    if (!admissible(T, size_cap)) return false;
+    violations -= violation(T);
+    if (violations < 0) return false;
+  }
+  return true;
+}
+
+bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
+                       const std::vector<std::pair<int, std::array<int, 3>>>& boundary) {
+  // The outer faces of the old set, outward, with what lies beyond each.
+  struct Outer {
+    Tri key;
+    int beyond, beyond_slot;
+    bool used;
+  };
+  std::vector<Outer> outer;
+  for (int t : old)
+    for (int k = 0; k < 4; ++k) {
+      const int n = nb_[t][k];
+      if (n >= 0 && std::find(old.begin(), old.end(), n) != old.end()) continue;
+      int s = -1;
+      if (n >= 0)
+        for (int j = 0; j < 4; ++j)
+          if (nb_[n][j] == t) s = j;
+      outer.push_back({outward_face(tets_[t], k), n, s, false});
+    }
+  for (const auto& [b, tri] : boundary)
+    for (Outer& o : outer)
+      if (o.beyond == -1 - b) o.key = rotated(tri);
+  // Every vertex of the old set stays in the new one.
+  for (int t : old)
+    for (int v : tets_[t]) {
+      bool found = false;
+      for (const Tet& T : fresh) found = found || T[0] == v || T[1] == v || T[2] == v || T[3] == v;
+      if (!found) return false;
+    }
+  // Match the new faces: in pairs of opposite orientation, or to an outer
+  // face of the same orientation; each outer face exactly once.
+  struct New {
+    Tri key, sorted;
+    int i, k;
+  };
+  std::vector<New> faces;
+  for (std::size_t i = 0; i < fresh.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      New f{outward_face(fresh[i], k), {}, int(i), k};
+      f.sorted = f.key;
+      std::sort(f.sorted.begin(), f.sorted.end());
+      faces.push_back(f);
+    }
+  std::sort(faces.begin(), faces.end(), [](const New& a, const New& b) { return a.sorted < b.sorted; });
+  std::vector<Tet> link(fresh.size(), {{0, 0, 0, 0}});  // >= 0: new tet index; < 0: -1 - outer index
+  for (std::size_t x = 0; x < faces.size();) {
+    std::size_t y = x + 1;
+    while (y < faces.size() && faces[y].sorted == faces[x].sorted) ++y;
+    if (y - x == 2) {
+      if (faces[x + 1].key != reversed(faces[x].key)) return false;
+      link[faces[x].i][faces[x].k] = faces[x + 1].i;
+      link[faces[x + 1].i][faces[x + 1].k] = faces[x].i;
+    } else if (y - x == 1) {
+      int found = -1;
+      for (std::size_t o = 0; o < outer.size(); ++o)
+        if (!outer[o].used && outer[o].key == faces[x].key) found = int(o);
+      if (found < 0) return false;
+      outer[found].used = true;
+      link[faces[x].i][faces[x].k] = -1 - found;
+    } else {
+      return false;
+    }
+    x = y;
+  }
+  for (const Outer& o : outer)
+    if (!o.used) return false;
+  // Commit.
+  for (const auto& [b, tri] : boundary) bnd_[b] = tri;
+  for (int t : old) {
+    tets_[t][0] = -1;
+    free_slots_.push_back(t);
+  }
+  std::sort(free_slots_.begin(), free_slots_.end(), std::greater<int>());
+  std::vector<int> id(fresh.size());
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    if (!free_slots_.empty()) {
+      id[i] = free_slots_.back();
+      free_slots_.pop_back();
+    } else {
+      id[i] = int(tets_.size());
+      tets_.push_back({});
+      nb_.push_back({});
+      q_.push_back(0);
+      tried_.push_back(-1);
+      insert_tried_.push_back(-1);
+    }
+    const Tet& T = fresh[i];
+    tets_[id[i]] = T;
+    q_[id[i]] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    for (int v : T) vtet_[v] = id[i];
+  }
+  ++clock_;
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    touch(fresh[i]);
+    tried_[id[i]] = insert_tried_[id[i]] = -1;
+  }
+  for (std::size_t i = 0; i < fresh.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const int l = link[i][k];
+      if (l >= 0) {
+        nb_[id[i]][k] = id[l];
+      } else {
+        const Outer& o = outer[-1 - l];
+        nb_[id[i]][k] = o.beyond;
+        if (o.beyond >= 0) nb_[o.beyond][o.beyond_slot] = id[i];
+      }
+    }
+  return true;
+}
+
+bool Improver::flip23(int t, int k) {
+  const int n = nb_[t][k];
+  if (n < 0) return false;
+  const int d = tets_[t][k];
+  int e = -1;
+  for (int j = 0; j < 4; ++j)
+    if (nb_[n][j] == t) e = tets_[n][j];
+  if (e < 0) return false;
+  // (x, y, z, d) positive: the reverse of t's outward face opposite d.
+  const Tri f = reversed(outward_face(tets_[t], k));
+  const std::vector<Tet> fresh = {{{f[0], f[1], e, d}}, {{f[1], f[2], e, d}}, {{f[2], f[0], e, d}}};
+  const std::vector<int> old = {t, n};
+  double w;
+  if (!accept(old, fresh, w) || !replace(old, fresh)) return false;
+  ++st_.flips23;
+  return true;
+}
+
+bool Improver::remove_edge(int t, int i, int j) {
+  const int a = tets_[t][i], b = tets_[t][j];
+  std::vector<int> ts, rv;
+  if (!ring(t, a, b, ts, rv)) return false;
+  const int m = int(rv.size());
+  // Triangles (r_i, r_j, r_k), i < j < k, become the tets (r_i, r_j, r_k, b)
+  // and (r_k, r_j, r_i, a); the dynamic programme (Klincsek's, as Shewchuk's
+  // edge removal uses it) maximises the worst of them over the
+  // triangulations of the ring's polygon.
+  double worst_old = HUGE_VAL;
+  for (int x : ts) worst_old = std::min(worst_old, q_[x]);
+  auto tri = [&](int x, int y, int z) {
+    const Point3 &p = P_[rv[x]], &q = P_[rv[y]], &r = P_[rv[z]];
+    return std::min(min_sine(p, q, r, P_[b]), min_sine(r, q, p, P_[a]));
+  };
+  double best[kMaxRing][kMaxRing];
+  int cut[kMaxRing][kMaxRing];
+  for (int len = 1; len < m; ++len)
+    for (int x = 0; x + len < m; ++x) {
+      const int z = x + len;
+      if (len == 1) {
+        best[x][z] = HUGE_VAL;
+        continue;
+      }
+      best[x][z] = -HUGE_VAL;
+      for (int y = x + 1; y < z; ++y) {
+        const double v = std::min({best[x][y], best[y][z], tri(x, y, z)});
+        if (v > best[x][z]) {
+          best[x][z] = v;
+          cut[x][z] = y;
+        }
+      }
+    }
+  if (!(best[0][m - 1] > worst_old)) return false;
+  std::vector<Tet> fresh;
+  std::vector<std::pair<int, int>> todo = {{0, m - 1}};
+  while (!todo.empty()) {
+    const auto [x, z] = todo.back();
+    todo.pop_back();
+    if (z - x < 2) continue;
+    const int y = cut[x][z];
+    fresh.push_back({{rv[x], rv[y], rv[z], b}});
+    fresh.push_back({{rv[z], rv[y], rv[x], a}});
+    todo.push_back({x, y});
+    todo.push_back({y, z});
+  }
+  double w;
+  if (!accept(ts, fresh, w) || !replace(ts, fresh)) return false;
+  if (m == 3)
+    ++st_.flips32;
+  else if (m == 4)
+    ++st_.flips44;
+  else
+    ++st_.edge_removals;
+  return true;
+}
+
+bool Improver::flip22(int t, int i, int j) {
+  const int a0 = tets_[t][i], b0 = tets_[t][j];
+  int k = -1, l = -1;
+  for (int s = 0; s < 4; ++s)
+    if (s != i && s != j) (k < 0 ? k : l) = s;
+  // One of t's two faces at the edge is a boundary triangle, the other
+  // interior, leading to t2, whose other face at the edge is boundary too.
+  if (nb_[t][k] >= 0) std::swap(k, l);
+  if (nb_[t][k] >= 0 || nb_[t][l] < 0) return false;
+  const int t2 = nb_[t][l];
+  const int c = tets_[t][k];  // opposite the boundary face (a, b, d); on the shared face (a, b, c)
+  const int d = tets_[t][l];  // opposite the shared face
+  const int e = [&] {
+    for (int s = 0; s < 4; ++s)
+      if (nb_[t2][s] == t) return tets_[t2][s];
+    return -1;
+  }();
+  const int k2 = slot(t2, c);
+  if (e < 0 || k2 < 0 || nb_[t2][k2] >= 0) return false;
+  const int b1 = -1 - nb_[t][k], b2 = -1 - nb_[t2][k2];
+  if (b1 >= int(bnd_.size()) || b2 >= int(bnd_.size())) return false;
+  const int f1 = r_.mesh.boundary_facet[b1], f2 = r_.mesh.boundary_facet[b2];
+  if (f1 < 0 || f1 != f2) return false;
+  if (CGAL::orientation(cgal::to_cgal(P_[a0]), cgal::to_cgal(P_[b0]), cgal::to_cgal(P_[d]), cgal::to_cgal(P_[e])) !=
+      CGAL::COPLANAR)
+    return false;
+  // Outward, t's boundary face is (a, b, d) for (a, b, c, d) positive.
+  const Tri B1 = outward_face(tets_[t], k);
+  // Rotate so that B1 = (a, b, d): a, b the edge, d the apex.
+  Tri o = B1;
+  while (o[2] != d) o = {{o[1], o[2], o[0]}};
+  const int a = o[0], b = o[1];
+  // The boundary cycle a -> e -> b -> d: new triangles (a, e, d), (e, b, d);
+  // the tets with apex c inside: (x, z, y, c) for each outward (x, y, z).
+  const Tri n1{{a, e, d}}, n2{{e, b, d}};
+  const std::vector<Tet> fresh = {{{a, d, e, c}}, {{e, d, b, c}}};
+  const std::vector<int> old = {t, t2};
+  double w;
+  if (!accept(old, fresh, w) || !replace(old, fresh, {{b1, n1}, {b2, n2}})) return false;
+  ++st_.flips22;
+  return true;
+}
+
+bool Improver::smooth(int v) {
+  if (v < 0 || v >= int(fixed_.size()) || fixed_[v]) return false;
+  std::vector<int> S;
+  star(v, S);
+  if (S.empty()) return false;
+  double worst_old = HUGE_VAL, size_cap = max_size_, lmin = HUGE_VAL;
+  int violations = 0;
+  for (int t : S) {
+    worst_old = std::min(worst_old, q_[t]);
+    const Tet& T = tets_[t];
+    violations += violation(T);
+    if (max_size_ > 0) {
+      double rl, R;
+      radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
+      size_cap = std::max(size_cap, R);
+    }
+    for (int u : T)
+      if (u != v) lmin = std::min(lmin, geometry::dist2(P_[u], P_[v]));
+  }
+  lmin = std::sqrt(lmin);
+  if (!(lmin > 0)) return false;
+  const Point3 start = P_[v];
+  auto quality_at = [&](int t, const Point3& x) {
+    Point3 p[4];
+    for (int k = 0; k < 4; ++k) p[k] = tets_[t][k] == v ? x : P_[tets_[t][k]];
+    return min_sine(p[0], p[1], p[2], p[3]);
+  };
+  auto star_worst = [&](const Point3& x) {
+    double w = HUGE_VAL;
+    for (int t : S) w = std::min(w, quality_at(t, x));
+    return w;
+  };
+  bool moved = false;
+  double current = worst_old;
+  for (int step = 0; step < kSmoothSteps; ++step) {
+    // The gradient of each nearly worst tet (central differences); the
+    // direction is the sum of their unit gradients (nonsmooth ascent).
+    const double h = 1e-7 * lmin;
+    Point3 dir{{0, 0, 0}};
+    for (int t : S) {
+      const double qt = quality_at(t, P_[v]);
+      if (qt > current + 1e-3) continue;
+      Point3 g;
+      for (int c = 0; c < 3; ++c) {
+        Point3 p = P_[v], m = P_[v];
+        p[c] += h;
+        m[c] -= h;
+        g[c] = (quality_at(t, p) - quality_at(t, m)) / (2 * h);
+      }
+      dir = geometry::add(dir, geometry::unit(g));
+    }
+    if (!(norm(dir) > 0)) break;
+    dir = geometry::unit(dir);
+    bool better = false;
+    for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
+      const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
+      const double w = star_worst(x);
+      if (!(w > current)) continue;
+      const Point3 keep = P_[v];
+      P_[v] = x;
+      bool ok = true;
+      int left = violations;
+      for (int t : S) {
+        const Tet& T = tets_[t];
+        if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) ||
+            (left -= violation(T)) < 0) {
+          ok = false;
+          break;
+        }
+      }
+      if (!ok) {
+        P_[v] = keep;
+        continue;
+      }
+      current = w;
+      better = true;
+      break;
+    }
+    if (!better) break;
+    moved = true;
+  }
+  if (!moved) {
+    P_[v] = start;
+    return false;
+  }
+  for (int t : S) q_[t] = quality_at(t, P_[v]);
+  ++clock_;
+  for (int t : S) touch(tets_[t]);
+  ++st_.smoothed;
+  return true;
+}
+
+bool Improver::insert(int t) {
+  if (!alive(t)) return false;
+  const Tet T0 = tets_[t];
+  double r2;
+  const Point3 cc = geometry::circumcenter(P_[T0[0]], P_[T0[1]], P_[T0[2]], P_[T0[3]], r2);
+  Point3 g{{0, 0, 0}};
+  for (int v : T0) g = geometry::add(g, geometry::mul(P_[v], 0.25));
+  std::vector<Point3> candidates;
+  if (std::isfinite(r2)) candidates.push_back(cc);
+  candidates.push_back(g);
+  double best = -HUGE_VAL;
+  std::vector<int> best_old;
+  std::vector<Tet> best_fresh;
+  Point3 best_p{};
+  const int p_id = int(P_.size());
+  for (const Point3& p : candidates) {
+    // Walk from t to the tet that holds p (double orientation; the exact
+    // test comes with the new tets); give up at the boundary.
+    int cur = t;
+    for (int steps = 0; steps < 64 && cur >= 0; ++steps) {
+      int next = -1;
+      for (int k = 0; k < 4 && next < 0; ++k) {
+        const Tri f = outward_face(tets_[cur], k);
+        // p beyond face k: (x, z, y, p) is not positive.
+        const Point3 &x = P_[f[0]], &y = P_[f[1]], &z = P_[f[2]];
+        if (dot(sub(z, x), cross(sub(y, x), sub(p, x))) < 0) next = k;
+      }
+      if (next < 0) break;
+      cur = nb_[cur][next];
+    }
+    if (cur < 0) continue;
+    // The cavity: tets whose circumsphere holds p, grown from cur, then
+    // grown further until every outer face sees p (star-shaped).
+    std::vector<int> cav = {cur};
+    auto in_sphere = [&](int x) {
+      const Tet& T = tets_[x];
+      double s2;
+      const Point3 c = geometry::circumcenter(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], s2);
+      return std::isfinite(s2) && geometry::dist2(c, p) < s2;
+    };
+    for (std::size_t i = 0; i < cav.size() && int(cav.size()) < kMaxCavity; ++i)
+      for (int k = 0; k < 4; ++k) {
+        const int n = nb_[cav[i]][k];
+        if (n >= 0 && std::find(cav.begin(), cav.end(), n) == cav.end() && in_sphere(n)) cav.push_back(n);
+      }
+    P_.push_back(p);
+    std::vector<Tet> fresh;
+    bool ok = false;
+    for (int round = 0; round < kMaxCavity; ++round) {
+      fresh.clear();
+      int grow = -2;
+      for (int x : cav)
+        for (int k = 0; k < 4 && grow == -2; ++k) {
+          const int n = nb_[x][k];
+          if (n >= 0 && std::find(cav.begin(), cav.end(), n) != cav.end()) continue;
+          const Tri f = outward_face(tets_[x], k);
+          const Tet nt{{f[0], f[2], f[1], p_id}};
+          if (!positive(P_[nt[0]], P_[nt[1]], P_[nt[2]], P_[nt[3]])) {
+            grow = n;
+            break;
+          }
+          fresh.push_back(nt);
+        }
+      if (grow == -2) {
+        ok = true;
+        break;
+      }
+      if (grow < 0 || int(cav.size()) >= kMaxCavity) break;
+      cav.push_back(grow);
+    }
+    if (ok && std::find(cav.begin(), cav.end(), t) != cav.end()) {
+      vtet_.push_back(-1);
+      double w;
+      if (accept(cav, fresh, w) && w > best) {
+        best = w;
+        best_old = cav;
+        best_fresh = fresh;
+        best_p = p;
+      }
+      vtet_.pop_back();
+    }
+    P_.pop_back();
+  }
+  if (best_fresh.empty()) return false;
+  P_.push_back(best_p);
+  vtet_.push_back(-1);
+  fixed_.push_back(0);
+  if (!replace(best_old, best_fresh)) {
+    P_.pop_back();
+    vtet_.pop_back();
+    fixed_.pop_back();
+    return false;
+  }
+  r_.input_vertex.push_back(-1);
+  if (!r_.mesh.weights.empty()) r_.mesh.weights.push_back(0);
+  r_.nearest_neighbour.push_back(0);  // set in finish()
+  inserted_.push_back(p_id);
+  ++st_.inserted;
+  return true;
+}
+
+bool Improver::improve_tet(int t) {
+  if (!alive(t)) return false;
+  for (const auto& e : kEdge)
+    if (alive(t) && remove_edge(t, e[0], e[1])) return true;
+  for (int k = 0; k < 4; ++k)
+    if (alive(t) && nb_[t][k] >= 0 && flip23(t, k)) return true;
+  for (const auto& e : kEdge)
+    if (alive(t) && flip22(t, e[0], e[1])) return true;
+  return false;
+}
+
+bool Improver::run() {
+  const double target = std::sin(kImproveTargetDeg * geometry::kPi / 180);
+  const double insert_below = std::sin(kInsertBelowDeg * geometry::kPi / 180);
+  auto bad_tets = [&](double below) {
+    std::vector<int> list;
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+      if (alive(int(t)) && q_[t] < below) list.push_back(int(t));
+    std::stable_sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b]; });
+    return list;
+  };
+  auto flips = [&]() {
+    std::size_t n = 0;
+    for (int t : bad_tets(target)) {
+      if (!poll()) return n;
+      if (!alive(t) || !(q_[t] < target) || !fresh_since(tried_[t], tets_[t])) continue;
+      if (improve_tet(t))
+        ++n;
+      else
+        tried_[t] = clock_;
+    }
+    return n;
+  };
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::size_t changed = flips();
+    // Smoothing: the free vertices of the bad tets.
+    std::vector<int> verts;
+    for (int t : bad_tets(target))
+      for (int v : tets_[t])
+        if (!fixed_[v]) verts.push_back(v);
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    for (int v : verts) {
+      if (!poll()) break;
+      if (smoothed_[v] >= 0 && vtime_[v] <= smoothed_[v]) continue;  // its star has not changed
+      if (smooth(v))
+        ++changed;
+      else
+        smoothed_[v] = clock_;
+    }
+    changed += flips();
+    // Insertion where a sliver is left, then flips and smoothing around the
+    // new vertex.
+    for (int t : bad_tets(insert_below)) {
+      if (!poll()) break;
+      if (!alive(t) || !(q_[t] < insert_below) || !fresh_since(insert_tried_[t], tets_[t])) continue;
+      if (!insert(t)) {
+        insert_tried_[t] = clock_;
+        continue;
+      }
+      ++changed;
+      const int v = int(P_.size()) - 1;
+      changed += smooth(v);
+    }
+    if (cancelled_) return false;
+    st_.passes = pass + 1;
+    if (changed == 0) break;
+  }
+  return !cancelled_;
+}
+
+void Improver::finish() {
+  TetMesh& m = r_.mesh;
+  m.tets.clear();
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) m.tets.push_back(tets_[t]);
+  m.boundary = bnd_;
+  // N(v) of an inserted vertex: its shortest edge.
+  for (int v : inserted_) {
+    std::vector<int> S;
+    star(v, S);
+    double l2 = HUGE_VAL;
+    for (int t : S)
+      for (int u : tets_[t])
+        if (u != v) l2 = std::min(l2, geometry::dist2(P_[u], P_[v]));
+    r_.nearest_neighbour[v] = std::sqrt(l2);
+  }
+  ImproveStats& s = r_.improve;
+  const ImproveStats keep = s;
+  s = st_;
+  s.ran = true;
+  s.min_dihedral_before = keep.min_dihedral_before;
+  s.min_dihedral_after = keep.min_dihedral_after;
+  s.slivers_before = keep.slivers_before;
+  s.skinny_before = keep.skinny_before;
+  s.near_small_angle_before = keep.near_small_angle_before;
+  s.violations_before = keep.violations_before;
+}
+
+namespace {
+
+double smallest_dihedral(const std::vector<TetQuality>& quality) {
+  double m = 180;
+  for (const TetQuality& q : quality) m = std::min(m, q.min_dihedral_deg);
+  return quality.empty() ? 0 : m;
+}
+
+}  // namespace
+
+bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOptions& opt,
+                   const ProgressCallback& progress) {
+  ImproveStats& s = r.improve;
+  s = ImproveStats();
+  // Dihedral angles do not depend on the weights: the extraction's weighted
+  // qualities give the smallest angle before.
+  s.min_dihedral_before = smallest_dihedral(r.quality);
+  s.slivers_before = r.slivers;
+  s.skinny_before = r.skinny;
+  s.near_small_angle_before = r.near_small_angle;
+  s.violations_before = r.violations;
+  std::size_t calls = 0, tried = 0;
+  const auto report = [&] {
+    Progress p;
+    p.phase = "improve";
+    p.vertices = r.mesh.vertices.size();
+    p.steps = tried;
+    p.fraction = 0.95;
+    return progress(p);
+  };
+  if (progress && !report()) return false;
+  const std::function<bool()> keep_going = [&] {
+    ++tried;
+    if (!progress || ++calls < kImprovePoll) return true;
+    calls = 0;
+    return report();
+  };
+  Improver im(r, opt.rho0, opt.max_size, keep_going);
+  im.set_classes(&balls, opt.theta_deg);
+  const bool done = im.run();
+  im.finish();
+  if (!done) return false;
+  // The classes again, on the improved mesh (h5's classify_tets).
+  if (!classify_tets(r, balls, opt, keep_going)) return false;
+  s.min_dihedral_after = smallest_dihedral(r.quality);
+  return true;
+}
+
+}  // namespace wqmesh::mesher

@@ -1,0 +1,172 @@
+// wqmesh: the improvement phase after PUMP (beyond the paper: Cheng, Dey and
+// Ray's WQMESH ends with PUMP; MeshOptions::improve = false keeps its output
+// bit for bit). After Klingner and Shewchuk, "Aggressive Tetrahedral Mesh
+// Improvement" (IMR 2007): the objective is the smallest sine of the six
+// dihedral angles of a tet (min-sine), raised by topological operations on
+// interior faces and edges (2-3 flips; edge removal, whose rings of 3 and 4
+// tets are the 3-2 and 4-4 flips), 2-2 flips of boundary triangles inside
+// one input facet, smoothing of interior Steiner vertices and insertion of
+// interior Steiner points. Unlike Stellar, the boundary is kept as it is
+// (only exactly coplanar 2-2 flips inside one facet change it), no vertex on
+// a boundary triangle moves, and every change must pass two guards beyond
+// the paper's rule (see Improver::accept).
+//
+// Contract of every change: a set of tets is replaced by another set with the
+// same boundary faces; it is accepted only if the worst min-sine of the new
+// tets is strictly greater than the worst of the old ones and every new tet
+// is positively oriented by CGAL's exact predicate (EPICK orientation), so
+// the new tets fill exactly the old region, the worst tet of the mesh never
+// gets worse and nothing is ever inverted.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "mesher/protecting_balls.h"
+#include "wqmesh/mesher.h"
+
+namespace wqmesh::mesher {
+
+/// Passes at most (each: flips, smoothing, flips again, insertion where a
+/// sliver is left, over the tets below kImproveTargetDeg); the phase stops
+/// earlier after a pass that improves nothing.
+constexpr int kImprovePasses = 6;
+/// Tets whose min-sine is below sin(kImproveTargetDeg) are worked on.
+constexpr double kImproveTargetDeg = 30;
+/// Insertion is tried on the tets still below sin(kInsertBelowDeg) after a
+/// pass's flips and smoothing.
+constexpr double kInsertBelowDeg = 10;
+/// Edge removal handles rings of at most this many tets (the dynamic
+/// programme over the ring's polygon is O(n^3)).
+constexpr int kMaxRing = 7;
+/// Smoothing steps per vertex and pass.
+constexpr int kSmoothSteps = 3;
+/// An insertion cavity holds at most this many tets.
+constexpr int kMaxCavity = 48;
+
+/// The smallest sine of the six dihedral angles of tet abcd (each sine is
+/// 6 V l_ij / (|n_k| |n_l|), n_k the area normal of the face opposite k);
+/// negative when abcd is negatively oriented, 0 when a face is degenerate.
+double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
+/// The improvement phase on an extracted mesh (r.mesh: vertices, tets,
+/// boundary triangles with their facets; r.nearest_neighbour, r.input_vertex,
+/// r.mesh.weights kept per vertex). The vertices of boundary triangles and
+/// the input vertices never move. New vertices get weight 0 (when r.mesh has
+/// weights), input_vertex -1 and nearest_neighbour = their shortest edge.
+/// Guards beyond the paper's rule (and Stellar's): with the protecting balls
+/// (set_classes), a change may not leave more violations (TetClass, with
+/// rho and theta) among its tets than there were; with max_size > 0, no new
+/// tet's circumradius exceeds max(max_size, the largest old one). A tet is
+/// retried only after a change touched one of its vertices (and a vertex
+/// smoothed again only after its star changed), so later passes cost what
+/// the previous one changed.
+class Improver {
+ public:
+  using Tet = std::array<int, 4>;
+  Improver(MeshResult& r, double rho, double max_size, const std::function<bool()>& keep_going = {});
+
+  /// With the protecting balls and theta (degrees): a change may not make
+  /// more tets of its set violations (TetClass) than there were.
+  void set_classes(const ProtectingBalls* balls, double theta_deg);
+  /// Runs up to kImprovePasses passes; false when keep_going returned false
+  /// (the mesh is then valid but only partly improved). Call finish() after.
+  bool run();
+  /// Writes the mesh back into r (live tets and boundary triangles, compact)
+  /// and fills r.improve's operation counts and passes.
+  void finish();
+
+  // The operations, each on a live tet t; true when a change was accepted.
+  /// 2-3 flip of t's face opposite its vertex k (an interior face).
+  bool flip23(int t, int k);
+  /// Removes the interior edge of t between its vertices i and j (ring of
+  /// 3 to kMaxRing tets: 3-2 flip, 4-4 flip, edge removal).
+  bool remove_edge(int t, int i, int j);
+  /// 2-2 flip of the boundary edge of t between its vertices i and j: the
+  /// two boundary triangles at it lie in one input facet, their four points
+  /// are exactly coplanar, and exactly two tets hold the edge.
+  bool flip22(int t, int i, int j);
+  /// Moves free vertex v (on no boundary triangle, no input vertex) to raise
+  /// the worst min-sine of its star; false if it did not move.
+  bool smooth(int v);
+  /// Inserts an interior Steiner point in or near t (its circumcenter or
+  /// centroid), re-triangulating a star-shaped cavity of tets around it.
+  bool insert(int t);
+
+  /// Tries every topological operation on t; true when one was accepted.
+  bool improve_tet(int t);
+
+  // Read access for the tests.
+  const std::vector<Tet>& tets() const { return tets_; }
+  bool alive(int t) const { return tets_[t][0] >= 0; }
+  double quality(int t) const { return q_[t]; }
+  const std::vector<Point3>& points() const { return P_; }
+  bool movable(int v) const { return !fixed_[v]; }
+  const ImproveStats& stats() const { return st_; }
+  /// The worst min-sine over the live tets.
+  double worst() const;
+
+ private:
+  bool accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new) const;
+  /// Replaces the tets `old` by `fresh` (faces matched to each other and to
+  /// the old set's outer faces; `boundary` lists replacement boundary
+  /// triangles as (index, triangle)); false, and nothing changed, when the
+  /// faces do not match (every vertex of the old set must stay).
+  bool replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
+               const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {});
+  bool has(int t, int v) const;
+  int slot(int t, int v) const;
+  /// The tets around v (its star), from vtet_; empty if v has none.
+  void star(int v, std::vector<int>& out) const;
+  bool ring(int t, int a, int b, std::vector<int>& tets, std::vector<int>& verts) const;
+  /// Whether T (at the current points) would be a violation of the classes
+  /// (TetClass: skinny by the unweighted or the weighted R/l, or a sliver,
+  /// and not near a small angle); false without balls.
+  bool violation(const Tet& T) const;
+  /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
+  bool admissible(const Tet& T, double size_cap) const;
+  bool poll();
+
+  MeshResult& r_;
+  double rho_, max_size_;
+  const ProtectingBalls* balls_ = nullptr;
+  double theta_deg_ = 0, sin_theta_ = 0;
+  const std::function<bool()>& keep_going_;
+  std::vector<Point3>& P_;
+  std::vector<Tet> tets_;
+  /// nb_[t][k]: the tet across the face opposite vertex k, or -(1 + b) for
+  /// boundary triangle b.
+  std::vector<Tet> nb_;
+  std::vector<double> q_;
+  std::vector<int> free_slots_;
+  std::vector<std::array<int, 3>> bnd_;
+  std::vector<int> vtet_;
+  std::vector<char> fixed_;
+  std::vector<int> inserted_;
+  /// clock_ counts the accepted changes; vtime_[v] is the clock of the last
+  /// change of v's star; tried_[t], smoothed_[v], insert_tried_[t]: the clock
+  /// of the last failed attempt (-1: none).
+  std::int64_t clock_ = 0;
+  std::vector<std::int64_t> vtime_, tried_, smoothed_, insert_tried_;
+  void touch(const Tet& T);
+  bool fresh_since(std::int64_t at, const Tet& T) const;
+  ImproveStats st_;
+  bool cancelled_ = false;
+};
+
+/// The phase on a finished, conforming run's extracted mesh r: records the
+/// smallest dihedral angle and the class counts before, improves r.mesh,
+/// then recomputes r.quality and the classes (with `balls` and opt's
+/// thresholds) and the smallest dihedral angle after, in r.improve. Calls
+/// `progress` (phase "improve") at its start and after every kImprovePoll
+/// operations tried; false when it returned false (the run is cancelled: r's
+/// mesh is then valid but its classes are not recomputed).
+bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOptions& opt,
+                   const ProgressCallback& progress);
+/// Operations (tets or vertices tried) between two progress calls.
+constexpr int kImprovePoll = 64;
+
+}  // namespace wqmesh::mesher
