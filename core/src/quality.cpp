@@ -97,6 +97,38 @@ struct ScaledTet {
   }
 };
 
+// Edges in the order 01, 02, 03, 12, 13, 23; `opposite` is the other pair.
+constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int kOpposite[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
+
+/// The vector from vertex i to vertex j of the scaled tet, from the edge
+/// differences (not from e_j - e_i, which would round twice).
+Point3 edge_vector(const ScaledTet& s, int i, int j) {
+  if (i == j) return Point3{{0, 0, 0}};
+  const bool flip = i > j;
+  const int lo = flip ? j : i, hi = flip ? i : j;
+  int idx = 0;
+  for (int t = 0; t < 6; ++t)
+    if (kEdge[t][0] == lo && kEdge[t][1] == hi) idx = t;
+  const Point3& v = s.edge[idx];
+  return flip ? Point3{{-v[0], -v[1], -v[2]}} : v;
+}
+
+/// The dihedral angle at edge i (kEdge order) of the scaled tet, in degrees:
+/// the angle between the projections of p_k - p_i and p_l - p_i on the plane
+/// orthogonal to e = p_j - p_i, i.e. between e x (p_k - p_i) and
+/// e x (p_l - p_i) (both rotated by the same quarter turn about e). In
+/// [0, 180] whatever the orientation; a flat tet gives 0 or 180. The one
+/// computation of tet_quality and tet_min_dihedral_deg, so they agree bit
+/// for bit.
+double dihedral_deg(const ScaledTet& s, int i) {
+  const int pi = kEdge[i][0];
+  const Point3& e = s.edge[i];
+  const Point3 nk = cross(e, edge_vector(s, pi, kOpposite[i][0]));
+  const Point3 nl = cross(e, edge_vector(s, pi, kOpposite[i][1]));
+  return angle_deg(nk, nl);
+}
+
 }  // namespace
 
 double tet_volume_scaled(const Point3& a, const Point3& b, const Point3& c, const Point3& d, int& exponent) {
@@ -130,23 +162,8 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   TetQuality q;
   const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
   const int k = s.k;
-  const Point3 origin{{0, 0, 0}};
   const Point3 &e1 = s.edge[0], &e2 = s.edge[1], &e3 = s.edge[2];
-  // Edges in the order 01, 02, 03, 12, 13, 23; `opposite` is the other pair.
-  static constexpr int kEdge[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  static constexpr int kOpposite[6][2] = {{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}};
-  // The vector from vertex i to vertex j of the scaled tet, from the edge
-  // differences (not from e_j - e_i, which would round twice).
-  auto vec = [&](int i, int j) -> Point3 {
-    if (i == j) return origin;
-    const bool flip = i > j;
-    const int lo = flip ? j : i, hi = flip ? i : j;
-    int idx = 0;
-    for (int t = 0; t < 6; ++t)
-      if (kEdge[t][0] == lo && kEdge[t][1] == hi) idx = t;
-    const Point3& v = s.edge[idx];
-    return flip ? Point3{{-v[0], -v[1], -v[2]}} : v;
-  };
+  auto vec = [&](int i, int j) { return edge_vector(s, i, j); };
 
   // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
   const double det = dot(e1, cross(e2, e3));
@@ -204,18 +221,11 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   const double inradius = area > 0 ? 3.0 * std::fabs(det / 6.0) / area : 0.0;
   q.aspect_ratio = inradius > 0 ? circumradius / inradius : kInf;
 
-  // Dihedral angle at edge ij: the angle between the projections of p_k - p_i
-  // and p_l - p_i on the plane orthogonal to e = p_j - p_i, i.e. between
-  // e x (p_k - p_i) and e x (p_l - p_i) (both rotated by the same quarter turn
-  // about e). In [0, 180] whatever the orientation; a flat tet gives 0 or 180.
+  // The dihedral angles (see dihedral_deg).
   q.min_dihedral_deg = 180;
   q.max_dihedral_deg = 0;
   for (int i = 0; i < 6; ++i) {
-    const int pi = kEdge[i][0];
-    const Point3& e = s.edge[i];
-    const Point3 nk = cross(e, vec(pi, kOpposite[i][0]));
-    const Point3 nl = cross(e, vec(pi, kOpposite[i][1]));
-    const double angle = angle_deg(nk, nl);
+    const double angle = dihedral_deg(s, i);
     q.dihedral_deg[i] = angle;
     if (angle < q.min_dihedral_deg) q.min_dihedral_deg = angle;
     if (angle > q.max_dihedral_deg) q.max_dihedral_deg = angle;
@@ -227,6 +237,16 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   q.radius = std::ldexp(radius, k);
   q.inradius = std::ldexp(inradius, k);
   return q;
+}
+
+double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
+  double smallest = 180;
+  for (int i = 0; i < 6; ++i) {
+    const double angle = dihedral_deg(s, i);
+    if (angle < smallest) smallest = angle;
+  }
+  return smallest;
 }
 
 std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going) {

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -323,23 +323,66 @@ int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
   return v == Rt::Vertex_handle() || impl_->rt.is_infinite(v) ? -1 : v->info();
 }
 
+namespace {
+
+// The index of each cell of a triangulation by its address, for cell_graph:
+// open addressing with linear probing in a table of at least twice as many
+// slots as cells (a power of two), so a look-up touches one or two slots
+// where std::unordered_map follows a node per entry (the whole-mesh cell
+// graph was 3-8% of a run with it; issue 15).
+class CellIndex {
+ public:
+  explicit CellIndex(std::size_t n) {
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    mask_ = size - 1;
+    keys_.assign(size, nullptr);
+    values_.assign(size, -1);
+  }
+  void add(const void* key, int value) {
+    std::size_t i = slot(key);
+    while (keys_[i] != nullptr) i = (i + 1) & mask_;
+    keys_[i] = key;
+    values_[i] = value;
+  }
+  /// The value of a key added before; -1 for any other.
+  int find(const void* key) const {
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return values_[i];
+      if (keys_[i] == nullptr) return -1;
+    }
+  }
+
+ private:
+  std::size_t slot(const void* key) const {
+    const std::uint64_t x = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(key));
+    return static_cast<std::size_t>(((x >> 4) * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
+  }
+  std::size_t mask_ = 0;
+  std::vector<const void*> keys_;
+  std::vector<int> values_;
+};
+
+}  // namespace
+
 RegularTriangulation::CellGraph RegularTriangulation::cell_graph(const std::function<bool(std::size_t)>& poll) const {
   CellGraph g;
   constexpr std::size_t kEvery = 1024;
   std::size_t n = 0;
   auto stop = [&] { return poll && ++n % kEvery == 0 && !poll(kEvery); };
-  std::unordered_map<Rt::Cell_handle, int> index;
-  index.reserve(impl_->rt.number_of_cells());
+  const std::size_t cells = impl_->rt.number_of_cells();
+  CellIndex index(cells);
+  g.cells.reserve(cells);
   for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
     if (stop()) return {};
-    index.emplace(c, static_cast<int>(g.cells.size()));
+    index.add(&*c, static_cast<int>(g.cells.size()));
     g.cells.push_back(impl_->tet_of(c));
   }
   g.neighbor.resize(g.cells.size());
-  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+  int i = 0;
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c, ++i) {
     if (stop()) return {};
-    const int i = index[c];
-    for (int k = 0; k < 4; ++k) g.neighbor[i][k] = index[c->neighbor(k)];
+    for (int k = 0; k < 4; ++k) g.neighbor[i][k] = index.find(&*c->neighbor(k));
   }
   return g;
 }
@@ -400,9 +443,60 @@ using Dt2 = CGAL::Delaunay_triangulation_2<PlaneTraits, Tds2>;
 
 }  // namespace
 
+// The vertices of a facet's triangulation by caller id: open addressing with
+// linear probing, at most half full (std::unordered_map's node per entry
+// made these look-ups about 4% of a run; issue 15). Ids are the 3D vertex
+// ids (>= 0); any int may be looked up.
+class VertexById {
+ public:
+  VertexById() { clear(); }
+  void clear() {
+    keys_.assign(16, kEmpty);
+    values_.assign(16, Dt2::Vertex_handle());
+    size_ = 0;
+  }
+  /// The vertex with caller id `id`, or null.
+  Dt2::Vertex_handle find(int id) const {
+    for (std::size_t i = slot(id);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == id && id != kEmpty) return values_[i];
+      if (keys_[i] == kEmpty) return Dt2::Vertex_handle();
+    }
+  }
+  /// Sets the vertex of `id` (>= 0).
+  void set(int id, Dt2::Vertex_handle v) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    std::size_t i = slot(id);
+    while (keys_[i] != kEmpty && keys_[i] != id) i = (i + 1) & (keys_.size() - 1);
+    if (keys_[i] == kEmpty) ++size_;
+    keys_[i] = id;
+    values_[i] = v;
+  }
+
+ private:
+  static constexpr int kEmpty = std::numeric_limits<int>::min();
+  std::size_t slot(int id) const {
+    const std::uint64_t h = std::uint64_t(std::uint32_t(id)) * 0x9E3779B97F4A7C15ull;
+    return static_cast<std::size_t>(h >> 32) & (keys_.size() - 1);
+  }
+  void grow() {
+    std::vector<int> keys;
+    std::vector<Dt2::Vertex_handle> values;
+    keys.swap(keys_);
+    values.swap(values_);
+    keys_.assign(2 * keys.size(), kEmpty);
+    values_.assign(2 * keys.size(), Dt2::Vertex_handle());
+    size_ = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) set(keys[i], values[i]);
+  }
+  std::vector<int> keys_;
+  std::vector<Dt2::Vertex_handle> values_;
+  std::size_t size_ = 0;
+};
+
 struct PlanarDelaunay::Impl {
   Dt2 dt;
-  std::unordered_map<int, Dt2::Vertex_handle> by_id;
+  VertexById by_id;
   int axis = 2;
   Dt2::Vertex_handle last;
 
@@ -448,9 +542,9 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
   // else at the last one inserted: insertions come in spatial runs, and a
   // walk from an arbitrary face costs O(sqrt n) on a large facet.
   Dt2::Face_handle start;
-  const auto near = impl_->by_id.find(hint);
-  if (near != impl_->by_id.end())
-    start = near->second->face();
+  const Dt2::Vertex_handle near = impl_->by_id.find(hint);
+  if (near != Dt2::Vertex_handle())
+    start = near->face();
   else if (impl_->last != Dt2::Vertex_handle())
     start = impl_->last->face();
   Dt2::Locate_type lt;
@@ -459,7 +553,7 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
   const Dt2::Vertex_handle v = impl_->dt.insert(q, lt, f, li);
   v->info() = id;
-  impl_->by_id[id] = v;
+  impl_->by_id.set(id, v);
   impl_->last = v;
   return id;
 }
@@ -477,9 +571,9 @@ void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
 
 bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const {
   out.clear();
-  const auto it = impl_->by_id.find(id);
-  if (it == impl_->by_id.end() || impl_->dt.dimension() < 2) return true;
-  auto f = impl_->dt.incident_faces(it->second), done = f;
+  const Dt2::Vertex_handle v = impl_->by_id.find(id);
+  if (v == Dt2::Vertex_handle() || impl_->dt.dimension() < 2) return true;
+  auto f = impl_->dt.incident_faces(v), done = f;
   if (f == nullptr) return true;
   const std::size_t bound = impl_->star_bound();
   std::size_t seen = 0;
@@ -495,9 +589,8 @@ bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
 void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const {
   out.clear();
   if (a == b || impl_->dt.dimension() < 2) return;
-  const auto ia = impl_->by_id.find(a), ib = impl_->by_id.find(b);
-  if (ia == impl_->by_id.end() || ib == impl_->by_id.end()) return;
-  const Dt2::Vertex_handle va = ia->second, vb = ib->second;
+  const Dt2::Vertex_handle va = impl_->by_id.find(a), vb = impl_->by_id.find(b);
+  if (va == Dt2::Vertex_handle() || vb == Dt2::Vertex_handle()) return;
   // Walk the star of a looking for b and the star of b looking for a, one
   // face of each in turn; the first walk to find the edge wins, and the first
   // to end without it proves there is no edge ab. Each walk is bounded by

@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "mesh_invariants.h"
+#include "mesher/extract.h"
 #include "mesher/mesher.h"
 #include "mesher/pump.h"
 #include "wqmesh/analysis.h"
@@ -710,6 +711,68 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
     for (int n : seen) std::printf(" %d", n);
     std::printf("\n");
   }
+}
+
+}  // namespace
+}  // namespace wqmesh
+
+namespace wqmesh {
+namespace {
+
+// The speed work of issue 15 keeps the meshes: the sliver count before PUMP
+// (count_qmesh_slivers, without building the mesh) is extract()'s count, the
+// scan it hands to PUMP gives PUMP the candidates of PUMP's own scan, and
+// labels said to be order-free are the same for the cells in another order.
+TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
+  std::vector<std::string> files =
+      models(WQMESH_EXAMPLE_MODELS, {"edge_facet.off", "slit.off", "thin_wedge.off", "bracket.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl", "slit-1.off"})) files.push_back(f);
+  int order_free_models = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const Input in = load(file);
+    const mesher::Domain dom(in.plc, in.analysis);
+    MeshOptions o;
+    o.pump = false;  // no rule 7: slivers left to count
+    ProgressCallback none;
+    mesher::Mesher m(dom, o, none);
+    m.initialize();
+    m.conform();
+    m.refine();
+    RegularTriangulation::CellGraph scan;
+    std::vector<char> scan_labels;
+    std::vector<double> nn;
+    mesher::Extract x(dom, o, m.triangulation(), m.vertices(), m.subcomplex(), m.balls(), nn, m.meter());
+    const std::size_t counted = x.count_qmesh_slivers(scan, scan_labels);
+    EXPECT_EQ(counted, m.extract().slivers);
+    // The scan count_qmesh_slivers hands on is PUMP's own.
+    mesher::Pump handed = m.make_pump();
+    handed.use_scan(scan, scan_labels);
+    handed.prepare();
+    mesher::Pump own = m.make_pump();
+    own.prepare();
+    EXPECT_EQ(handed.candidates(), own.candidates());
+    // Labels in reversed cell order.
+    const RegularTriangulation::CellGraph& g = scan;
+    bool order_free = false;
+    const std::vector<char> labels = mesher::interior_labels(dom, m.subcomplex(), g, m.meter(), false, &order_free);
+    EXPECT_EQ(labels, scan_labels);
+    RegularTriangulation::CellGraph r;
+    const int n = static_cast<int>(g.cells.size());
+    for (int i = n - 1; i >= 0; --i) {
+      r.cells.push_back(g.cells[i]);
+      std::array<int, 4> nb = g.neighbor[i];
+      for (int& c : nb) c = n - 1 - c;
+      r.neighbor.push_back(nb);
+    }
+    const std::vector<char> reversed = mesher::interior_labels(dom, m.subcomplex(), r, m.meter());
+    if (order_free) {
+      ++order_free_models;
+      for (int i = 0; i < n; ++i) ASSERT_EQ(labels[i], reversed[n - 1 - i]) << "cell " << i;
+    }
+  }
+  EXPECT_GT(order_free_models, 0);
 }
 
 }  // namespace

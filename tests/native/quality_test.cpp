@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "wqmesh/quality.h"
 
@@ -258,6 +259,38 @@ TEST(Quality, DegenerateTetsAreWellDefined) {
   // Weighted degenerate tet.
   const std::array<double, 4> w{{0.1, 0.2, 0.3, 0.4}};
   expect_well_defined(tet_quality(a, b, c, d, &w));
+}
+
+TEST(Quality, MinDihedralAloneIsTetQualitysBitForBit) {
+  // The mesher's sliver scans use tet_min_dihedral_deg in place of
+  // tet_quality: the same double (compared by ==) on random tets, flat and
+  // nearly flat ones, needles, coincident points and tets far from 1 in scale.
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<std::array<Point3, 4>> tets;
+  for (int n = 0; n < 500; ++n) {
+    std::array<Point3, 4> p;
+    for (auto& v : p)
+      for (double& x : v) x = u(rng);
+    if (n % 5 == 1) p[3][2] = p[0][2] + 1e-9 * u(rng);  // nearly flat
+    if (n % 5 == 2) p[3] = {{(p[0][0] + p[1][0]) / 2, (p[0][1] + p[1][1]) / 2, (p[0][2] + p[1][2]) / 2}};
+    if (n % 5 == 3)
+      for (auto& v : p)
+        for (double& x : v) x = std::ldexp(x, (n % 2 ? 600 : -600));
+    tets.push_back(p);
+  }
+  const Point3 a{{0, 0, 0}}, b{{1, 0, 0}}, c{{1, 1, 0}}, d{{0, 1, 0}};
+  tets.push_back({{a, b, c, d}});
+  tets.push_back({{a, a, b, c}});
+  tets.push_back({{a, a, a, a}});
+  tets.push_back({{a, b, Point3{{2, 0, 0}}, Point3{{3, 0, 0}}}});
+  int small = 0;
+  for (const auto& p : tets) {
+    const double m = tet_min_dihedral_deg(p[0], p[1], p[2], p[3]);
+    EXPECT_EQ(m, tet_quality(p[0], p[1], p[2], p[3]).min_dihedral_deg);
+    small += m < 3;
+  }
+  EXPECT_GT(small, 50);  // the nearly flat ones are slivers
 }
 
 TEST(Quality, EqualWeightsGiveOrthoradiusSquaredRMinusW) {

@@ -50,6 +50,10 @@ struct TetQuality {
 TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                        const std::array<double, 4>* w = nullptr);
 
+/// tet_quality(a, b, c, d).min_dihedral_deg, bit for bit (the same
+/// arithmetic), without the other measures: for the mesher's sliver scans.
+double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+
 /// The signed volume of a tet (> 0 when positively oriented) as a scaled
 /// value v and an `exponent`: the volume is v * 2^exponent, |v| < 2 (the
 /// longest edge component is scaled into [1, 2)), so its sign is right and

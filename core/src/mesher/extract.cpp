@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <unordered_map>
@@ -10,16 +11,50 @@
 
 #include "mesher/classify.h"
 #include "mesher/extract.h"
+#include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
 
+namespace {
+
+/// Whether every edge of `walls` lies in an even number of them. The walls
+/// are then a mod-2 2-cycle of the triangulation (with its infinite vertex a
+/// 3-sphere, where every such cycle bounds), so the parity of the walls
+/// crossed on the way from an infinite cell is the same along every path: the
+/// flood fill of interior_labels gives every cell the same label whatever
+/// the order of the cell graph. Not so with a facet that ends inside the
+/// domain (a slit) or with holes (a run that does not conform).
+bool even_walls(const std::vector<Tri>& walls) {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * walls.size());
+  for (const Tri& t : walls)
+    for (int k = 0; k < 3; ++k) edges.push_back(edge_key(t[k], t[(k + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if ((j - i) % 2) return false;
+    i = j;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, const RegularTriangulation::CellGraph& g,
-                                  WorkMeter& meter, bool scan) {
+                                  WorkMeter& meter, bool scan, bool* order_free) {
   // Flood fill from the infinite cells; the subfacets of input facets are the
   // walls.
-  std::unordered_set<Tri, TriHash> walls;
+  std::vector<Tri> wall_list;
   for (const Subfacet& h : sub.subfacets())
-    if (!dom.is_box_facet(h.facet)) walls.insert(sorted(h.v));
+    if (!dom.is_box_facet(h.facet)) wall_list.push_back(sorted(h.v));
+  if (order_free) *order_free = even_walls(wall_list);
+  const std::unordered_set<Tri, TriHash> walls(wall_list.begin(), wall_list.end());
+  // A triangle with a vertex off P (free, or the infinite one) is in no
+  // facet's triangulation: no wall, without a look-up.
+  const auto is_wall = [&](int a, int b, int c) {
+    return sub.on_p(a) && sub.on_p(b) && sub.on_p(c) && walls.count(sorted({{a, b, c}}));
+  };
   // Crossing a wall flips inside and outside (a polyhedron may have several
   // shells). 1 = inside.
   std::vector<char> label(g.cells.size(), 2);  // 2 = unknown
@@ -38,8 +73,7 @@ std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, cons
       const int n = g.neighbor[c][k];
       if (label[n] != 2) continue;
       const Tet& t = g.cells[c];
-      const Tri f = sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}});
-      label[n] = walls.count(f) ? char(1 - label[c]) : label[c];
+      label[n] = is_wall(t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]) ? char(1 - label[c]) : label[c];
       stack.push_back(n);
     }
   }
@@ -64,34 +98,46 @@ namespace {
 /// interior_labels is order-independent only when every subfacet is a wall,
 /// so on a stopped, non-conforming run the labels (and so the extracted tets,
 /// violations and volume) were platform-dependent before this.
+/// The vertex order of a cell in canonical(): `perm` takes the cell's
+/// vertices to their canonical places (sorted, then the last two swapped if
+/// that took an odd permutation, so the orientation is kept).
+std::array<int, 4> canonical_perm(const Tet& t) {
+  std::array<int, 4> perm{{0, 1, 2, 3}};
+  std::sort(perm.begin(), perm.end(), [&](int a, int b) { return t[a] < t[b]; });
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += perm[i] > perm[j];
+  if (inversions % 2) std::swap(perm[2], perm[3]);
+  return perm;
+}
+
+Tet canonical_tet(const Tet& t) {
+  const std::array<int, 4> perm = canonical_perm(t);
+  return {{t[perm[0]], t[perm[1]], t[perm[2]], t[perm[3]]}};
+}
+
 RegularTriangulation::CellGraph canonical(const RegularTriangulation::CellGraph& g) {
   const std::size_t n = g.cells.size();
-  std::vector<Tet> cells(n);
-  std::vector<std::array<int, 4>> nb(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    std::array<int, 4> perm{{0, 1, 2, 3}};
-    const Tet& t = g.cells[c];
-    std::sort(perm.begin(), perm.end(), [&](int a, int b) { return t[a] < t[b]; });
-    int inversions = 0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) inversions += perm[i] > perm[j];
-    if (inversions % 2) std::swap(perm[2], perm[3]);
-    for (int k = 0; k < 4; ++k) {
-      cells[c][k] = t[perm[k]];
-      nb[c][k] = g.neighbor[c][perm[k]];
-    }
-  }
-  std::vector<int> order(n);
-  for (std::size_t c = 0; c < n; ++c) order[c] = static_cast<int>(c);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return cells[a] < cells[b]; });
+  // Each cell in its canonical vertex order with its index, sorted by the
+  // vertices (no two cells have the same four vertices, so the order is
+  // that of the tuples alone, whatever the sort).
+  struct Entry {
+    Tet t;
+    int index;
+  };
+  std::vector<Entry> entries(n);
+  for (std::size_t c = 0; c < n; ++c) entries[c] = {canonical_tet(g.cells[c]), static_cast<int>(c)};
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.t < b.t; });
   std::vector<int> rank(n);
-  for (std::size_t i = 0; i < n; ++i) rank[order[i]] = static_cast<int>(i);
+  for (std::size_t i = 0; i < n; ++i) rank[entries[i].index] = static_cast<int>(i);
   RegularTriangulation::CellGraph out;
   out.cells.resize(n);
   out.neighbor.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    out.cells[i] = cells[order[i]];
-    for (int k = 0; k < 4; ++k) out.neighbor[i][k] = rank[nb[order[i]][k]];
+    const int c = entries[i].index;
+    const std::array<int, 4> perm = canonical_perm(g.cells[c]);
+    out.cells[i] = entries[i].t;
+    for (int k = 0; k < 4; ++k) out.neighbor[i][k] = rank[g.neighbor[c][perm[k]]];
   }
   return out;
 }
@@ -187,6 +233,69 @@ constexpr long long kRayParityBudget = 400'000'000;
 
 }  // namespace
 
+std::vector<char> Extract::labels(const RegularTriangulation::CellGraph& g, bool conforming, bool stoppable) {
+  std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, stoppable);
+  if (stoppable && meter_.stopped()) return inside;
+  if (!conforming) {
+    // Beyond the paper: the walls have holes, so the flood fill's labels
+    // leak; label each cell by its centroid instead (RayParity), unless that
+    // costs more than kRayParityBudget edge tests (then the flood fill's
+    // labels stay).
+    const RayParity parity(dom_.p, dom_.input_facets);
+    long long budget = kRayParityBudget;
+    std::vector<char> by_ray(g.cells.size(), 0);
+    bool done = true;
+    for (std::size_t c = 0; c < g.cells.size() && done; ++c) {
+      const Tet t = canonical_tet(g.cells[c]);
+      if (std::find(t.begin(), t.end(), kInfinite) != t.end() || sub_.flat_on_facet(t)) continue;
+      Point3 z{{0, 0, 0}};
+      for (int v : t)
+        for (int k = 0; k < 3; ++k) z[k] += tri_.point(v)[k];
+      for (double& x : z) x *= 0.25;
+      const int in = parity.inside(z, budget);
+      if (in < 0) done = false;
+      by_ray[c] = static_cast<char>(in == 1);
+    }
+    if (done)
+      inside.swap(by_ray);
+    else
+      meter_.cap_reached();  // kRayParityBudget: the flood fill's labels stay
+  }
+  return inside;
+}
+
+std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels) {
+  // The inside slivers run() would count now, without building the mesh:
+  // the cells run() keeps, each measured in the vertex order run() gives it
+  // (the canonical one), so that the count is run()'s.
+  scan = {};
+  scan_labels.clear();
+  const bool conforming = sub_.conforms();
+  RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
+  if (meter_.stopped()) return 0;
+  bool order_free = false;
+  std::vector<char> flood = interior_labels(dom_, sub_, g, meter_, true, &order_free);
+  if (meter_.stopped()) return 0;
+  // The labels may depend on the order of the cells (see even_walls), or
+  // come from RayParity: then take them as run() does, in canonical order.
+  const bool as_is = conforming && order_free;
+  const RegularTriangulation::CellGraph cg = as_is ? RegularTriangulation::CellGraph() : canonical(g);
+  const std::vector<char> inside = as_is ? flood : labels(cg, conforming, true);
+  if (meter_.stopped()) return 0;
+  const std::vector<Tet>& cells = as_is ? g.cells : cg.cells;
+  std::size_t slivers = 0;
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    if (!meter_.poll(1, false)) return 0;
+    if (!inside[c]) continue;
+    const Tet t = canonical_tet(cells[c]);
+    const TetQuality q = tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
+    slivers += !(q.radius_edge > opt_.rho0) && q.min_dihedral_deg < opt_.theta_deg;
+  }
+  scan = std::move(g);
+  scan_labels = std::move(flood);
+  return slivers;
+}
+
 MeshResult Extract::run(bool stoppable) {
   MeshResult r;
   r.stopped = meter_.stop_reason();
@@ -212,33 +321,8 @@ MeshResult Extract::run(bool stoppable) {
   // In canonical order, so that the output is the same on every platform.
   const RegularTriangulation::CellGraph g = canonical(stoppable ? meter_.scan_cell_graph(tri_) : tri_.cell_graph());
   if (stoppable && meter_.stopped()) return stopped_result();
-  std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, stoppable);
+  const std::vector<char> inside = labels(g, r.conforming, stoppable);
   if (stoppable && meter_.stopped()) return stopped_result();
-  if (!r.conforming) {
-    // Beyond the paper: the walls have holes, so the flood fill's labels
-    // leak; label each cell by its centroid instead (RayParity), unless that
-    // costs more than kRayParityBudget edge tests (then the flood fill's
-    // labels stay).
-    const RayParity parity(dom_.p, dom_.input_facets);
-    long long budget = kRayParityBudget;
-    std::vector<char> by_ray(g.cells.size(), 0);
-    bool done = true;
-    for (std::size_t c = 0; c < g.cells.size() && done; ++c) {
-      const Tet& t = g.cells[c];
-      if (std::find(t.begin(), t.end(), kInfinite) != t.end() || sub_.flat_on_facet(t)) continue;
-      Point3 z{{0, 0, 0}};
-      for (int v : t)
-        for (int k = 0; k < 3; ++k) z[k] += tri_.point(v)[k];
-      for (double& x : z) x *= 0.25;
-      const int in = parity.inside(z, budget);
-      if (in < 0) done = false;
-      by_ray[c] = static_cast<char>(in == 1);
-    }
-    if (done)
-      inside.swap(by_ray);
-    else
-      meter_.cap_reached();  // kRayParityBudget: the flood fill's labels stay
-  }
   // Which input facet each wall triangle lies in.
   std::unordered_map<Tri, int, TriHash> facet_of;
   for (const Subfacet& h : sub_.subfacets())

@@ -17,8 +17,10 @@ namespace wqmesh::mesher {
 
 /// 1 for the cells of g inside the polyhedron. `scan`: poll `meter` while
 /// labelling (a phase's scan); the labels are then unusable if it stops.
+/// `order_free`, when given, says whether the labels are the same for every
+/// order of g's cells (extract.cpp, even_walls).
 std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, const RegularTriangulation::CellGraph& g,
-                                  WorkMeter& meter, bool scan = false);
+                                  WorkMeter& meter, bool scan = false, bool* order_free = nullptr);
 
 /// The extraction of the mesh from V, its triangulation and the subcomplex.
 class Extract {
@@ -34,8 +36,18 @@ class Extract {
   /// effect within a bounded amount of work; the result is then empty, with
   /// `stopped` set, once the run must stop.
   MeshResult run(bool stoppable = false);
+  /// The inside slivers run() would count now (QMESH's, before PUMP),
+  /// without building the mesh; polls, and gives 0 once the run must stop.
+  /// `scan` and `scan_labels` get the cell graph (CGAL's order) and its
+  /// interior_labels, which PUMP's prepare takes instead of scanning the
+  /// same triangulation again (Pump::use_scan); empty when stopped.
+  std::size_t count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels);
 
  private:
+  /// The labels run() takes for g: interior_labels, or RayParity's when the
+  /// run does not conform.
+  std::vector<char> labels(const RegularTriangulation::CellGraph& g, bool conforming, bool stoppable);
+
   const Domain& dom_;
   const MeshOptions& opt_;
   const RegularTriangulation& tri_;

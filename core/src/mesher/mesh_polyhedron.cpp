@@ -120,10 +120,9 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   run("refine", [&] { m.refine(); });
   std::size_t slivers_qmesh = 0;
   if (options.pump && !m.meter().stopped()) {
-    // Count the inside slivers QMESH would leave (a stoppable extraction:
-    // a cancel during it ends the run), then PUMP.
-    MeshResult before = m.extract(true);
-    slivers_qmesh = before.slivers;
+    // Count the inside slivers QMESH would leave (a scan that polls: a
+    // cancel during it ends the run), then PUMP.
+    slivers_qmesh = m.count_qmesh_slivers();
     run("pump", [&] { m.pump(); });
   }
   MeshResult r;

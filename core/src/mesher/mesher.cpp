@@ -42,6 +42,11 @@ Pump Mesher::make_pump() { return Pump(dom_, opt_, tri_, verts_, sub_, balls_, m
 void Mesher::pump() {
   meter_.set_phase(Phase::pump);
   Pump p = make_pump();
+  if (sliver_scan_vertices_ == static_cast<long>(verts_.size()))
+    p.use_scan(std::move(sliver_scan_), std::move(sliver_scan_labels_));
+  sliver_scan_ = {};
+  sliver_scan_labels_ = {};
+  sliver_scan_vertices_ = -1;
   p.run();
   nn_ = p.nearest_neighbours();
   pumped_vertices_ = p.pumped_vertices();
@@ -49,6 +54,13 @@ void Mesher::pump() {
 
 MeshResult Mesher::extract(bool stoppable) {
   return Extract(dom_, opt_, tri_, verts_, sub_, balls_, nn_, meter_).run(stoppable);
+}
+
+std::size_t Mesher::count_qmesh_slivers() {
+  const std::size_t n = Extract(dom_, opt_, tri_, verts_, sub_, balls_, nn_, meter_)
+                            .count_qmesh_slivers(sliver_scan_, sliver_scan_labels_);
+  sliver_scan_vertices_ = sliver_scan_.cells.empty() ? -1 : static_cast<long>(verts_.size());
+  return n;
 }
 
 // ---- insertion into V --------------------------------------------------------------

@@ -99,6 +99,10 @@ class Mesher {
   void pump();        ///< pump.cpp
   /// extract.cpp (Extract::run): interior tets, classes, statistics.
   MeshResult extract(bool stoppable = false);
+  /// The inside slivers extract() would count now (QMESH's, before PUMP),
+  /// without building the mesh (Extract::count_qmesh_slivers); its scan is
+  /// kept for the next pump() of the same triangulation.
+  std::size_t count_qmesh_slivers();
   /// PUMP over this run's pieces (pump() runs it; tests drive it by hand).
   Pump make_pump();
 
@@ -129,6 +133,11 @@ class Mesher {
   Inserter ins_;
   std::vector<double> nn_;  ///< N(v) at the end of REFINE
   std::size_t pumped_vertices_ = 0;
+  /// count_qmesh_slivers' scan for pump(), made at this many vertices (-1:
+  /// none).
+  RegularTriangulation::CellGraph sliver_scan_;
+  std::vector<char> sliver_scan_labels_;
+  long sliver_scan_vertices_ = -1;
 };
 
 }  // namespace wqmesh::mesher

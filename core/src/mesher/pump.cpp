@@ -46,10 +46,19 @@ void Pump::prepare() {
     nn_[v] = nearest_neighbour(tri_, static_cast<int>(v));
   }
   if (meter_.stopped()) return;
-  const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
-  if (meter_.stopped()) return;
-  const std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, true);
-  if (meter_.stopped()) return;
+  // The scan handed by use_scan (the sliver count's, of the same
+  // triangulation), else one of its own.
+  RegularTriangulation::CellGraph g;
+  std::vector<char> inside;
+  g.cells.swap(scan_.cells);
+  g.neighbor.swap(scan_.neighbor);
+  inside.swap(scan_labels_);
+  if (g.cells.empty()) {
+    g = meter_.scan_cell_graph(tri_);
+    if (meter_.stopped()) return;
+    inside = interior_labels(dom_, sub_, g, meter_, true);
+    if (meter_.stopped()) return;
+  }
   labels_.clear();
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
     if (!meter_.poll(1, false)) return;
@@ -111,7 +120,7 @@ void Pump::run() {
 }
 
 double Pump::angle_of(const Tet& t) const {
-  return tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3])).min_dihedral_deg;
+  return tet_min_dihedral_deg(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
 }
 
 bool Pump::is_wall(int a, int b, int c) const { return walls_.count(sorted({{a, b, c}})) > 0; }

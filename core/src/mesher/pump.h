@@ -28,6 +28,13 @@ class Pump {
       : dom_(domain), opt_(options), tri_(tri), verts_(vertices), sub_(sub), balls_(balls), meter_(meter) {}
   /// N(v) for every vertex, cell labels, walls. Called by run().
   void prepare();
+  /// Hands prepare() the cell graph (CGAL's order) and its interior_labels
+  /// of the current triangulation, so that it does not scan it again
+  /// (beyond the paper: Extract::count_qmesh_slivers made them just before).
+  void use_scan(RegularTriangulation::CellGraph g, std::vector<char> inside) {
+    scan_ = std::move(g);
+    scan_labels_ = std::move(inside);
+  }
   void run();
   /// (smallest dihedral, vertex) for the vertices of inside tets with a
   /// dihedral angle <= theta, worst first, as found by prepare().
@@ -84,6 +91,8 @@ class Pump {
   std::unordered_set<Tri, TriHash> walls_;
   std::vector<std::vector<Tri>> vertex_facets_;
   std::vector<std::pair<double, int>> candidates_;
+  RegularTriangulation::CellGraph scan_;  ///< use_scan's, until prepare()
+  std::vector<char> scan_labels_;
 };
 
 }  // namespace wqmesh::mesher

@@ -15,7 +15,7 @@ namespace {
 
 // The smallest dihedral angle of a tet, in degrees.
 double min_dihedral(const RegularTriangulation& tri, const Tet& t) {
-  return tet_quality(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3])).min_dihedral_deg;
+  return tet_min_dihedral_deg(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]));
 }
 }  // namespace
 

@@ -101,7 +101,9 @@ std::vector<Subfacet> Subcomplex::subfacets() const {
 }
 
 bool Subcomplex::flat_on_facet(const Tet& t) const {
-  if (std::find(t.begin(), t.end(), kInfinite) != t.end()) return false;
+  // A free vertex lies on no facet (facets_of is empty): not flat on one.
+  for (int v : t)
+    if (!on_p(v)) return false;
   std::vector<int> common, fs;
   facets_of(t[0], common);
   for (int k = 1; k < 4 && !common.empty(); ++k) {

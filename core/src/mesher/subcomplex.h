@@ -138,6 +138,12 @@ class Subcomplex {
   std::vector<Subfacet> subfacets() const;
   /// The facets of P holding vertex v.
   void facets_of(int v, std::vector<int>& out) const;
+  /// Whether v (kInfinite allowed) lies on a vertex, edge or facet of P: only
+  /// such vertices join the facets' planar triangulations (insert_vertex
+  /// puts a vertex into the facets facets_of gives it, none for a free one)
+  /// and end subsegments, so a triangle or edge with another vertex is no
+  /// subfacet or subsegment, without a look-up.
+  bool on_p(int v) const { return v >= 0 && verts_[v].on != On::free; }
   /// The subfacets of facet f at vertex v.
   void subfacets_at(int f, int v, std::vector<Tri>& out) const;
   bool is_subfacet(int f, const Tri& t) const;
