@@ -5,9 +5,9 @@
 //   wqmesh         the native command line (build/native/bin/wqmesh mesh),
 //                  with the improvement phase after PUMP (the default) and,
 //                  as "wqmesh no-improve", with --no-improve (the paper's
-//                  WQMESH output); a binary whose `wqmesh mesh --help` has no
-//                  --no-improve has no improvement phase: one row, and the
-//                  report says so;
+//                  WQMESH output); a binary whose `wqmesh mesh` does not
+//                  know --no-improve (neither in its usage nor when given)
+//                  has no improvement phase: one row, and the report says so;
 //   wqmesh-wasm    the wasm module under Node (examples/node/wasm_runner.mjs,
 //                  one process per run);
 //   Mesh_3         CGAL make_mesh_3 (tests/benchmark/mesh3_peer.cpp, built on
@@ -343,6 +343,8 @@ const num = (v) => (v === null || v === undefined ? '-' : (Math.abs(v) < 0.01 &&
 /** A goal's cell: "met (a >= b)" or "not met (a < b)"; "n/a (why)" when it does not apply. */
 const verdict = (ok, a, op, b) => `${ok ? 'met' : 'not met'} (${a} ${ok ? op : { '>=': '<', '<=': '>', '<': '>=', '=': '!=' }[op]} ${b})`;
 const na = (why) => `n/a (${why})`;
+/** Seconds: 3 decimals, or 2 significant digits under 0.01 s. */
+const secs = (v) => (v >= 0.01 || v === 0 ? v.toFixed(3) : v.toExponential(1));
 /** Tets under 5 degrees per 1000 tets of a measure. */
 const per1000 = (m) => (1000 * m.dihedral_below_5) / m.tets;
 /** The time of phase `name` in wqmesh's stats, or null. */
@@ -412,7 +414,7 @@ function goals(results) {
       : na(`${cliHas.improve ? 'no --no-improve mesh' : 'no improvement phase'}; ${w.tets} tets${ref}`);
     const imp = phase(s, 'improve'), rp = (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0);
     const time = imp === null ? na('no improve phase in the stats')
-      : verdict(imp < rp, `${imp.toFixed(3)} s`, '<', `${rp.toFixed(3)} s`);
+      : verdict(imp < rp, `${secs(imp)} s`, '<', `${secs(rp)} s`);
     rows.push([model.name, num(model.phiM), ...[minDih, rate, ten, violations, conforms, tets, time].map(count)]);
   }
   table(['model', 'phi_m', 'min dih', '<5/1000', '>=10 (15)', 'violations', 'conforms', 'tets', 'time'], rows, 9);
@@ -427,10 +429,13 @@ function goals(results) {
   console.log('\n## The improvement phase against WQMESH alone (--no-improve)\n');
   if (!cliHas.improve) console.log('This wqmesh has no improvement phase: one figure per cell, the WQMESH run\'s.\n');
   console.log('tets, min dih, <5: `wqmesh measure` of the --no-improve mesh -> the default mesh; refine, pump, ' +
-    'improve: the phases\' seconds in the default run\'s stats; operations: the stats\' "improve" object' +
+    'improve: the phases\' seconds in the default run\'s stats; operations: the non-zero counts of the stats\' ' +
+    '"improve" object' +
     (opt.baseline ? '; baseline tets: the --baseline stats\' count' : '') + '.\n');
-  const ops = (o) => (o && typeof o === 'object' ? Object.entries(o).filter(([, x]) => typeof x === 'number')
-    .map(([k, x]) => `${k} ${Number.isInteger(x) ? x : num(x)}`).join(', ') : '');
+  // The operation counts (integers; the stats' *_before classes and angles are in the other columns): passes, and
+  // every operation that was done at least once.
+  const ops = (o) => (o && typeof o === 'object' ? Object.entries(o).filter(([k, x]) => Number.isInteger(x) &&
+    !/before|after/.test(k) && (x > 0 || k === 'passes')).map(([k, x]) => `${k} ${x}`).join(', ') : '');
   table(['model', 'baseline tets', 'tets', 'min dih', '<5', 'refine s', 'pump s', 'improve s', 'operations'],
     results.map(({ model, native, plain }) => {
       const w = native && native.m && !native.m.error ? native.m : null;
@@ -457,14 +462,24 @@ if (tools.has('tetgen') && !existsSync(TETGEN)) {
   tools.delete('tetgen');
 }
 if (!haveTime) say(`${TIME} is missing (apt-get install time): no peak memory`);
-// What this binary can do, read from its usage (`wqmesh mesh --help` prints
-// it): the improvement phase (--no-improve in the mesh command's entry) and
-// the recount of the classes (--stats in the measure command's entry).
+// What this binary can do: the improvement phase (--no-improve) and the
+// recount of the classes (`measure --stats`), read from its usage (`wqmesh
+// mesh --help` prints it) or, when the usage does not list the option, from
+// whether the command accepts it (on a tetrahedron; a binary without it
+// answers "unknown option").
 const cliHas = (() => {
   const u = spawnSync(cli, ['mesh', '--help'], { encoding: 'utf8' });
   const text = `${u.stdout || ''}\n${u.stderr || ''}`;
   const entry = (command) => (text.match(new RegExp(`^ {2}${command} [\\s\\S]*?(?=^ {2}\\S)`, 'm')) || [''])[0];
-  return { improve: /--no-improve\b/.test(entry('mesh')), measureStats: /--stats\b/.test(entry('measure')) };
+  const tet = join(work, 'probe.off');
+  writeFileSync(tet, 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n');
+  const accepts = (args) => !/unknown option/.test(spawnSync(cli, args, { encoding: 'utf8' }).stderr || '');
+  const improve = /--no-improve\b/.test(entry('mesh')) ||
+    accepts(['mesh', tet, '-o', join(work, 'probe.mesh'), '--stats', join(work, 'probe.json'),
+      '--quiet', '--no-improve']);
+  const measureStats = /--stats\b/.test(entry('measure')) || (existsSync(join(work, 'probe.mesh')) &&
+    accepts(['measure', join(work, 'probe.mesh'), '--json', '--stats', join(work, 'probe.json')]));
+  return { improve, measureStats };
 })();
 
 const git = (...a) => spawnSync('git', ['-C', root, ...a], { encoding: 'utf8' }).stdout.trim();
@@ -478,7 +493,7 @@ console.log(`- time limit per model and tool ${opt.timeout} s (Mesh_3 bisection 
 console.log(cliHas.improve
   ? '- wqmesh has the improvement phase: "wqmesh" is the default run (improvement on), "wqmesh no-improve" ' +
     'the same with --no-improve (the paper\'s WQMESH output)'
-  : '- this wqmesh has no improvement phase (no --no-improve in `wqmesh mesh --help`): "wqmesh" is the ' +
+  : '- this wqmesh has no improvement phase (`wqmesh mesh` does not know --no-improve): "wqmesh" is the ' +
     'WQMESH output, and the goals are judged on it');
 console.log(cliHas.measureStats
   ? '- `wqmesh measure` takes --stats: the violations are also recounted from the written mesh'
