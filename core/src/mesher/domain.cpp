@@ -15,6 +15,53 @@ using namespace geometry;
 
 Point3 Sector::at(double t) const { return add(center, add(mul(e1, r * std::cos(t)), mul(e2, r * std::sin(t)))); }
 
+// ---- the SOS split point (section 4.1; beyond the paper) ------------------------
+// The paper splits a shield arc at its middle. Where the input is symmetric
+// that puts four points of a vertex ball's sphere on one small circle: a
+// mirror of the input, or the rotation about a sharp edge (which acts on the
+// edge's two facets as a mirror does), maps the sector [0, span] of a facet
+// onto the sector of another and the arc angle t to span - t (a mirror
+// reverses the facets' loops: t = 0 of one is t = span of the other). Two
+// mirror pairs of points are coplanar (their chords are parallel), so the
+// ball points of two such sectors' far edges and the two arcs' midpoints lie
+// on a circle, and rounding makes their tet flat (20 mm cube, example012,
+// extrusion, fandisk, wedge-1, thin_wedge, spike, edge_facet: smallest
+// dihedral angles of 1e-13 to 1e-15 degrees).
+// So SOS splits the arc [ta, tb] at ta + phi (tb - ta), phi = 1/2 + delta,
+// measured from the sector's t = 0 edge. Every split point's angle, as a
+// function of phi, increases with slope at least the length of the arc it
+// splits (induction: (1 - phi) ta + phi tb with ta, tb increasing), so where
+// the paper's point has a mirror partner, ours misses the partner's mirror
+// image by at least 2 delta times that arc: there are no mirror pairs, and
+// four points of one sphere are not coplanar by far more than rounding. Four
+// non-coplanar points of the sphere have it as circumsphere, which holds u:
+// they make no tet of Del V at all.
+// delta is small where the sphere's points of two facets lie close: at a
+// sharp edge of dihedral angle a, a point of one facet off the mirror image
+// of a point of the other by d lies inside the diametric balls of the other
+// facet's subfacets unless d is below about a^2 times the arc, and each such
+// encroachment splits another arc (wedge-1, a = 1 degree: 6 732 tets at
+// delta = 3e-5, 24 211 at 3e-3, 63 537 at 1e-2). So delta = min(pi/1000, a^2/64), a the
+// smallest input angle at u (edge-edge, edge-facet, dihedral) in radians.
+// Why the paper's lemmas still hold: the point still lies on the arc of the
+// boundary of u's ball in F between a and b, so the ball stays empty, the new
+// shield subsegments are chords of the arc, and the shield subfacets'
+// diametric balls still lie in the ball and the shield subsegments'
+// diametric balls (4.1). Each new arc is at least 1 - phi >= 0.4968 of the
+// old one instead of 1/2, so the distance from the split point to the arc's
+// ends, and the bounds on neighbour radii the termination proofs draw from
+// it (Lemma 5.1, from [8]), change by a factor of at least 0.993; the packing
+// argument is unchanged. INITIALIZE splits a sector of angle pi or more until
+// every arc is below pi (initial_splits: twice above pi/phi, a span within
+// 0.013 pi of 2 pi, where the middle needed one split); those points, like
+// the paper's, have no predecessor (5.1) and lie Omega(r) apart.
+int Sector::initial_splits() const {
+  int n = 0;
+  // sos_angle(0, t) ends the larger piece [0, phi t], the one split next.
+  for (double t = span; t >= kPi; t = sos_angle(0, t)) ++n;
+  return n;
+}
+
 // ---- P = the input PLC with the bounding box B ----------------------------------
 
 Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
@@ -82,6 +129,19 @@ Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
     ball_radius[u] = analysis.lfs.at(i) / 4;  // section 4.1: radius f(u)/4
   }
   for (int e : analysis.sharp_edges) sharp_edge[e] = 1;
+  // The SOS asymmetry per vertex (see Sector::initial_splits above), from the
+  // smallest input angle at it.
+  std::vector<double> smallest(nv, 90);
+  for (const EdgeEdgeAngle& a : analysis.edge_edge) smallest[a.vertex] = std::min(smallest[a.vertex], a.degrees);
+  for (const EdgeFacetAngle& a : analysis.edge_facet) smallest[a.vertex] = std::min(smallest[a.vertex], a.degrees);
+  for (const DihedralAngle& a : analysis.dihedral)
+    for (int v : {p.edges[a.edge].a, p.edges[a.edge].b})
+      smallest[v] = std::min({smallest[v], a.internal_degrees, a.external_degrees});
+  sos_asymmetry.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const double a = smallest[v] * kPi / 180;
+    sos_asymmetry[v] = std::min(kSosAsymmetry, a * a / 64);
+  }
 
   // A 2D frame per facet: origin at its first vertex, e1 along its first edge.
   frames.resize(p.facets.size());
@@ -130,6 +190,7 @@ Sector Domain::sector(int u, int f, int prev, int next) const {
   s.facet = f;
   s.center = p.vertices[u];
   s.r = ball_radius[u];
+  s.phi = 0.5 + sos_asymmetry[u];
   Point3 d1 = sub(p.vertices[next], s.center);
   d1 = sub(d1, mul(n, dot(d1, n)));
   s.e1 = mul(d1, 1 / std::sqrt(dot(d1, d1)));
@@ -146,7 +207,7 @@ std::size_t Domain::initialize_points() const {
   for (int u = 0; u < static_cast<int>(p.vertices.size()); ++u) {
     if (ball_radius[u] <= 0) continue;
     n += vertex_edges[u].size();
-    for_each_corner(u, [&](int f, int prev, int next) { n += sector(u, f, prev, next).span >= kPi; });
+    for_each_corner(u, [&](int f, int prev, int next) { n += sector(u, f, prev, next).initial_splits(); });
   }
   return n;
 }

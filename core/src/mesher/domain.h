@@ -22,7 +22,15 @@ struct Sector {
   int u = -1, facet = -1;
   Point3 center, e1, e2;
   double r = 0, span = 0;
+  /// The fraction of an arc at which SOS splits it, from its ta end: 1/2 +
+  /// Domain::sos_asymmetry[u] (the paper takes 1/2; see domain.cpp).
+  double phi = 0.5;
   Point3 at(double t) const;
+  /// Where SOS splits the arc [ta, tb] of this sector (section 4.1).
+  double sos_angle(double ta, double tb) const { return ta + phi * (tb - ta); }
+  /// How many SOS splits INITIALIZE makes in this sector so that every arc
+  /// is below pi (section 4.1): 0 below pi, 1 up to pi/phi, else 2.
+  int initial_splits() const;
 };
 
 // ---- P: the input PLC with the bounding box B (section 2) --------------------
@@ -33,6 +41,11 @@ struct Domain {
   std::vector<std::vector<int>> vertex_edges;
   std::vector<char> sharp_vertex, sharp_edge;
   std::vector<double> ball_radius;  ///< f(u)/4 at sharp vertices, else 0
+  /// Per vertex: how far off the middle SOS splits the arcs of its ball,
+  /// min(kSosAsymmetry, a^2/64), a the smallest input angle at the vertex in
+  /// radians (beyond the paper; see domain.cpp).
+  std::vector<double> sos_asymmetry;
+  static constexpr double kSosAsymmetry = 3.14159265358979323846 / 1000;
   struct Frame {
     Point3 origin, e1, e2, n;
     std::vector<std::vector<std::array<double, 2>>> loops;  ///< 2D loops
@@ -63,8 +76,8 @@ struct Domain {
           if (loop[i] == u) fn(f, loop[(i + m - 1) % m], loop[(i + 1) % m]);
   }
   /// The number of vertices INITIALIZE inserts (section 4.1): the vertices of
-  /// P and B, one ball point per edge end at a sharp vertex, and one SOS split
-  /// per sector of angle pi or more. Known before meshing, so a vertex limit
+  /// P and B, one ball point per edge end at a sharp vertex, and the SOS
+  /// splits of the sectors of angle pi or more (Sector::initial_splits). Known before meshing, so a vertex limit
   /// below it is refused at once.
   std::size_t initialize_points() const;
 };

@@ -68,7 +68,10 @@ void Initialize::run() {
   }
   // Shield subsegments: one per sector of a facet at a sharp vertex, between
   // the ball points on the sector's two edges; a sector of angle pi or more is
-  // split at the midpoint of its arc (SOS, section 4.1).
+  // split by SOS (section 4.1) until every arc is below pi. SOS splits a
+  // little off the middle (Sector::sos_angle, beyond the paper: see
+  // domain.cpp), so the larger arc [ta, t] needs a second split when the
+  // sector is within 0.013 pi of 2 pi.
   for (int u = 0; u < static_cast<int>(P.vertices.size()); ++u) {
     if (dom_.ball_radius[u] <= 0) continue;
     dom_.for_each_corner(u, [&](int f, int prev, int next) {
@@ -83,7 +86,11 @@ void Initialize::run() {
       shield.ta = 0;
       shield.tb = s.span;
       queues_.push_segment(sub_.add_segment(shield));
-      if (s.span >= kPi) ins_.insert(sub_.splite(shield), Rule::initialize);
+      for (int k = s.initial_splits(); k > 0; --k) {
+        const int id = ins_.insert(sub_.splite(shield), Rule::initialize);
+        if (id < 0) throw std::runtime_error("INITIALIZE: an SOS point could not be inserted");
+        shield = sub_.subsegment(edge_key(shield.a, id));  // the arc [ta, t], the larger piece
+      }
     });
   }
 }

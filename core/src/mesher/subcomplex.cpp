@@ -251,9 +251,12 @@ Insertion Subcomplex::splite(const Subsegment& e) const {
   ins.has_segment = true;
   ins.hint = e.a;
   if (e.sector >= 0) {
-    // SOS: the midpoint of the arc of the vertex ball between a and b.
+    // SOS: the point of the arc of the vertex ball between a and b, a little
+    // off its middle (beyond the paper, which takes the middle: the asymmetry
+    // leaves no four points of the sphere on a small circle where the input
+    // is symmetric; see Sector in domain.cpp, and why the lemmas still hold).
     const Sector& s = sectors_[e.sector];
-    ins.angle = 0.5 * (e.ta + e.tb);
+    ins.angle = s.sos_angle(e.ta, e.tb);
     ins.p = s.at(ins.angle);
     ins.on = On::facet;
     ins.element = s.facet;
@@ -280,9 +283,12 @@ Insertion Subcomplex::splitf(const Subfacet& h) const {
       // c is inside the vertex ball of u. A shield subsegment of this facet
       // at u that c encroaches is split (the largest); else the one whose arc
       // holds the direction of c; else c lies outside the facet's sectors at
-      // u and nothing is inserted. Shields shorter than 1e-6 r are not split:
+      // u and nothing is inserted. Shields shorter than 1e-4 r are not split:
       // the subfacet is then left as it is (rule 2 or 5 reports it at the end
-      // if it stays missing).
+      // if it stays missing). Two facets of u at a small angle can encroach
+      // each other's subfacets at every scale, halving their arcs in turn down
+      // to this length (a decimated sphere of the regression tests); at 1e-6 r
+      // the clusters of points it left made flat tets with u (issue 14).
       const Subsegment* pick = nullptr;
       double best = 0;
       for (int sid : vertex_sectors_[u]) {
@@ -311,7 +317,7 @@ Insertion Subcomplex::splitf(const Subfacet& h) const {
         }
       Insertion none;
       none.none = true;
-      if (!pick || dist2(tri_.point(pick->a), tri_.point(pick->b)) < 1e-12 * r * r) return none;
+      if (!pick || dist2(tri_.point(pick->a), tri_.point(pick->b)) < 1e-8 * r * r) return none;
       return splite(*pick);
     }
   // SPLITF (ii): reject c if it encroaches a subsegment, preferring those in
