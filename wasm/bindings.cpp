@@ -373,11 +373,15 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     val out = val::object();
     // peak_memory_mb: the peak of the live C++ allocations of this call.
     out.set("stats", run_result->stats_json(peak_bytes / 1048576.0, false));
-    std::vector<double> xyz;
-    for (const auto& p : r.mesh.vertices) xyz.insert(xyz.end(), p.begin(), p.end());
-    std::vector<std::uint32_t> tets, tris;
-    for (const auto& t : r.mesh.tets) tets.insert(tets.end(), t.begin(), t.end());
-    for (const auto& t : r.mesh.boundary) tris.insert(tris.end(), t.begin(), t.end());
+    // The vertices, tets and boundary triangles are copied straight from the
+    // mesh's arrays (contiguous std::arrays; indices are >= 0, so their int
+    // bits are the uint32 values), without a flattened copy in the heap.
+    static_assert(sizeof(wqmesh::Point3) == 3 * sizeof(double), "Point3 is 3 contiguous doubles");
+    static_assert(sizeof(r.mesh.tets[0]) == 4 * sizeof(std::uint32_t), "a tet is 4 contiguous ints");
+    static_assert(sizeof(r.mesh.boundary[0]) == 3 * sizeof(std::uint32_t), "a triangle is 3 contiguous ints");
+    const double* xyz = r.mesh.vertices.empty() ? nullptr : r.mesh.vertices[0].data();
+    const auto* tets = reinterpret_cast<const std::uint32_t*>(r.mesh.tets.data());
+    const auto* tris = reinterpret_cast<const std::uint32_t*>(r.mesh.boundary.data());
     std::vector<std::uint8_t> classes, ball_is_vertex;
     std::vector<double> angles, radius_edge, balls;
     for (wqmesh::TetClass c : r.tet_class) classes.push_back(static_cast<std::uint8_t>(c));
@@ -391,10 +395,10 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     }
     std::vector<double> weights = r.mesh.weights;
     weights.resize(r.mesh.vertices.size(), 0.0);
-    out.set("vertices", copy_out(xyz.data(), xyz.size()));
+    out.set("vertices", copy_out(xyz, 3 * r.mesh.vertices.size()));
     out.set("weights", copy_out(weights.data(), weights.size()));
-    out.set("tets", copy_out(tets.data(), tets.size()));
-    out.set("boundary", copy_out(tris.data(), tris.size()));
+    out.set("tets", copy_out(tets, 4 * r.mesh.tets.size()));
+    out.set("boundary", copy_out(tris, 3 * r.mesh.boundary.size()));
     out.set("boundaryFacet", copy_out(r.mesh.boundary_facet.data(), r.mesh.boundary_facet.size()));
     out.set("tetClass", copy_out(classes.data(), classes.size()));
     out.set("minDihedral", copy_out(angles.data(), angles.size()));

@@ -2,8 +2,9 @@
 // (examples/node/benchmark.mjs), so that each run has its own time limit and
 // peak memory. Loads the wasm module through wasm/index.mjs, meshes IN with
 // loadWqmesh().mesh(bytes, options), writes the interior tets as Medit and
-// the statistics (with wall_mesh_s, the time of the mesh() call, and
-// peak_rss_mb, this process's peak resident memory) as JSON.
+// the statistics (with wall_mesh_s, the time of the mesh() call,
+// peak_rss_mb, this process's peak resident memory, and wasm_heap_mb, the
+// module's memory after the run, which only grows: the run's peak) as JSON.
 // Usage: node examples/node/wasm_runner.mjs IN OUT.mesh STATS.json
 //          [--module build/wasm/wasm/wqmesh.mjs] [--max-vertices N] [--max-size H]
 // Exit codes as the command line's: 0 done, 1 usage or internal error,
@@ -85,6 +86,7 @@ const wallMesh = (performance.now() - t0) / 1000;
 const stats = { ...result.stats, wall_mesh_s: wallMesh };
 if (stats.conforming) writeMedit(out, result.vertices, result.tets);
 stats.peak_rss_mb = process.resourceUsage().maxRSS / 1024;
+stats.wasm_heap_mb = result.memory.heapBytes / 1048576;
 writeFileSync(statsPath, `${JSON.stringify(stats, null, 2)}\n`);
 if (stats.stopped) fail(3, `stopped: ${stats.stopped}${stats.stop_message ? `: ${stats.stop_message}` : ''}`);
 if (!stats.conforming) fail(1, 'the mesh does not conform to the input; not written');
