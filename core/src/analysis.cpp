@@ -13,11 +13,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include "exact.h"
 #include "geometry.h"
+#include "plc_index.h"
 #include "scaling.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/error.h"
@@ -69,11 +71,12 @@ V3<NT> crossn(const V3<NT>& a, const V3<NT>& b) {
 /// A facet's exact outward normal: (p[j] - p[i]) x (p[k] - p[i]) for three
 /// vertices i, j, k of the facet, chosen not collinear and ordered so that the
 /// cross product points outwards (the side from which the outer loop is
-/// counter-clockwise). `unit` is the same direction in double precision
-/// (Newell's normal of the outer loop, which is better conditioned).
-struct FacetFrame {
+/// counter-clockwise). `unit` is the same direction in double precision,
+/// for angle values: the index's fan area vector (PlcIndex::Frame::area)
+/// normalised.
+struct ExactNormal {
   int i = -1, j = -1, k = -1;
-  V unit{{0, 0, 0}};
+  V unit{{0, 0, 0}};  ///< geometry::unit of the index's area vector
   bool valid() const { return i >= 0; }
 };
 
@@ -86,33 +89,26 @@ class Analyzer {
   };
 
  public:
-  Analyzer(const PLC& plc, const AnalysisOptions& options) : plc_(plc), options_(options) {}
+  Analyzer(const PLC& plc, const PlcIndex& index, const AnalysisOptions& options)
+      : plc_(plc), index_(index), options_(options) {}
 
   Analysis run() {
-    const int nv = static_cast<int>(plc_.vertices.size());
-    vertex_edges_.assign(nv, {});
-    vertex_facets_.assign(nv, {});
-    for (int e = 0; e < static_cast<int>(plc_.edges.size()); ++e) {
-      vertex_edges_[plc_.edges[e].a].push_back(e);
-      vertex_edges_[plc_.edges[e].b].push_back(e);
-    }
-    frames_.resize(plc_.facets.size());
-    for (int f = 0; f < static_cast<int>(plc_.facets.size()); ++f) frames_[f] = make_frame(f);
-    // (facet, position of the vertex in its only loop when the facet is
-    // convex, else -1): what edge_facet_angles needs at each vertex.
-    std::vector<int> turns;
+    normals_.resize(plc_.facets.size());
     for (int f = 0; f < static_cast<int>(plc_.facets.size()); ++f) {
-      const bool convex = is_convex(f, turns);
-      const auto& loops = plc_.facets[f].loops;
-      for (std::size_t l = 0; l < loops.size(); ++l)
-        for (std::size_t r = 0; r < loops[l].size(); ++r)
-          vertex_facets_[loops[l][r]].push_back({f, static_cast<int>(l), static_cast<int>(r), convex && turns[r] > 0});
+      normals_[f] = exact_triple(f);
+      normals_[f].unit = geometry::unit(index_.frames[f].area);
     }
-    for (auto& list : vertex_facets_) {
-      std::stable_sort(list.begin(), list.end(), [](const Corner& x, const Corner& y) { return x.f < y.f; });
-      list.erase(std::unique(list.begin(), list.end(), [](const Corner& x, const Corner& y) { return x.f == y.f; }),
-                 list.end());
-    }
+    // The index's corners (the first one of each facet at each vertex), each
+    // marked fast when it is a strictly convex corner of a convex facet: what
+    // edge_facet_angles needs at each vertex.
+    std::vector<std::vector<int>> turns(plc_.facets.size());
+    std::vector<char> convex(plc_.facets.size());
+    for (int f = 0; f < static_cast<int>(plc_.facets.size()); ++f) convex[f] = is_convex(f, turns[f]);
+    const int nv = static_cast<int>(plc_.vertices.size());
+    corners_.assign(nv, {});
+    for (int u = 0; u < nv; ++u)
+      for (const PlcIndex::Corner& c : index_.vertex_corners[u])
+        corners_[u].push_back({c.facet, c.loop, c.position, convex[c.facet] && turns[c.facet][c.position] > 0});
     check_angle_budget();
     find_traversals();
 
@@ -123,7 +119,7 @@ class Analyzer {
     edge_facet_angles(a);
     dihedral_angles(a);
     sharp_elements(a);
-    a.lfs = local_feature_sizes(plc_, a.sharp_vertices, a.bounding_box);
+    a.lfs = local_feature_sizes(plc_, index_, a.sharp_vertices, a.bounding_box);
     return a;
   }
 
@@ -131,20 +127,12 @@ class Analyzer {
   const Point3& P(int v) const { return plc_.vertices[v]; }
 
   // ---- facet normals ------------------------------------------------------------
-  FacetFrame make_frame(int f) const {
-    FacetFrame fr;
+  ExactNormal exact_triple(int f) const {
+    ExactNormal fr;
     const PlcFacet& facet = plc_.facets[f];
     if (facet.loops.empty() || facet.loops[0].size() < 3) return fr;
     const auto& outer = facet.loops[0];
-    // Newell's normal of the outer loop, relative to its first vertex: twice
-    // the vector area, so it points outwards for a counter-clockwise loop.
     const V& o = P(outer[0]);
-    V newell{{0, 0, 0}};
-    for (std::size_t m = 1; m + 1 < outer.size(); ++m) {
-      const V c = cross(sub(P(outer[m]), o), sub(P(outer[m + 1]), o));
-      for (int q = 0; q < 3; ++q) newell[q] += c[q];
-    }
-    fr.unit = geometry::unit(newell);
 
     // The triple: outer[0], the loop vertex farthest from it, and the loop
     // vertex farthest from the line through those two (well conditioned).
@@ -200,7 +188,7 @@ class Analyzer {
 
   template <class NT>
   V3<NT> exact_normal(int f) const {
-    const FacetFrame& fr = frames_[f];
+    const ExactNormal& fr = normals_[f];
     return crossn(lift<NT>(P(fr.j)) - lift<NT>(P(fr.i)), lift<NT>(P(fr.k)) - lift<NT>(P(fr.i)));
   }
 
@@ -209,8 +197,16 @@ class Analyzer {
   int side_of_facet(int f, const Point3& p) const {
     return exact::sign([&](auto z) {
       using NT = decltype(z);
-      return dotn(exact_normal<NT>(f), lift<NT>(p) - lift<NT>(P(frames_[f].i)));
+      return dotn(exact_normal<NT>(f), lift<NT>(p) - lift<NT>(P(normals_[f].i)));
     });
+  }
+
+  /// The angle between w and the plane of facet f, in degrees, in [0, 90]
+  /// (from the component of w along the index's unit normal and the rest).
+  double plane_degrees(const V& w, int f) const {
+    const V& n = normals_[f].unit;
+    const double wn = dot(w, n);
+    return std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
   }
 
   // ---- boxes (section 2) ---------------------------------------------------------
@@ -238,8 +234,7 @@ class Analyzer {
   /// vertex then edges. Acute iff (v1 - u).(v2 - u) > 0, exactly.
   void edge_edge_angles(Analysis& a) const {
     for (int u = 0; u < static_cast<int>(plc_.vertices.size()); ++u) {
-      std::vector<int> es = vertex_edges_[u];
-      std::sort(es.begin(), es.end());
+      const std::vector<int>& es = index_.vertex_edges[u];  // increasing
       for (std::size_t m = 0; m < es.size(); ++m)
         for (std::size_t r = m + 1; r < es.size(); ++r) {
           const int v1 = other_end(es[m], u), v2 = other_end(es[r], u);
@@ -257,14 +252,13 @@ class Analyzer {
   /// angle puv. Ordered by vertex u, then edge, then facet.
   void edge_facet_angles(Analysis& a) const {
     for (int u = 0; u < static_cast<int>(plc_.vertices.size()); ++u) {
-      std::vector<int> es = vertex_edges_[u];
-      std::sort(es.begin(), es.end());
+      const std::vector<int>& es = index_.vertex_edges[u];  // increasing
       for (int e : es) {
         const int v = other_end(e, u);
-        for (const Corner& c : vertex_facets_[u]) {
+        for (const Corner& c : corners_[u]) {
           const int f = c.f;
           if (f == plc_.edges[e].facets[0] || f == plc_.edges[e].facets[1]) continue;
-          if (!frames_[f].valid() || side_of_facet(f, P(v)) == 0) continue;
+          if (!normals_[f].valid() || side_of_facet(f, P(v)) == 0) continue;
           EdgeFacetAngle ang = c.fast ? convex_edge_facet(u, v, f, c.r) : general_edge_facet(u, v, c);
           ang.edge = e;
           a.edge_facet.push_back(ang);
@@ -281,7 +275,7 @@ class Analyzer {
   /// the sign at corner r (> 0 strictly convex, 0 straight) when true.
   bool is_convex(int f, std::vector<int>& turns) const {
     const PlcFacet& facet = plc_.facets[f];
-    if (facet.loops.size() != 1 || !frames_[f].valid()) return false;
+    if (facet.loops.size() != 1 || !normals_[f].valid()) return false;
     const auto& loop = facet.loops[0];
     const std::size_t m = loop.size();
     turns.assign(m, 0);
@@ -315,11 +309,10 @@ class Analyzer {
     const std::size_t m = loop.size();
     const int a = loop[(r + m - 1) % m], b = loop[(r + 1) % m];
     const V w = sub(P(v), P(u));
-    const V& n = frames_[f].unit;
-    const double wn = dot(w, n);
-    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
+    const double plane_angle = plane_degrees(w, f);
     const V da = sub(P(a), P(u)), db = sub(P(b), P(u));
     const double ea = angle_degrees(w, da), eb = angle_degrees(w, db);
+    const V& n = normals_[f].unit;
     const bool inside = dot(cross(db, w), n) >= 0 && dot(cross(w, da), n) >= 0;
     const double degrees = inside ? std::min({plane_angle, ea, eb}) : std::min(ea, eb);
     const bool acute = exact::dot_sign(P(u), P(a), P(v)) > 0 || exact::dot_sign(P(u), P(b), P(v)) > 0;
@@ -349,9 +342,7 @@ class Analyzer {
                         return q == 0 ? x.x : q == 1 ? x.y : x.z;
                       }) == 0;
     const V wd = sub(P(v), P(u));
-    const V& n = frames_[f].unit;
-    const double wn = dot(wd, n);
-    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(wd, geometry::mul(n, wn)))) * (180 / kPi);
+    const double plane_angle = plane_degrees(wd, f);
     if (perpendicular) return EdgeFacetAngle{u, -1, f, plane_angle, false};
     auto side = [&](int from, int to, bool w_first) {
       return exact::sign([&](auto z) {
@@ -379,18 +370,18 @@ class Analyzer {
     unsigned long long total = 0, worst = 0;
     int worst_vertex = -1;
     for (int u = 0; u < static_cast<int>(plc_.vertices.size()); ++u) {
-      const unsigned long long k = vertex_edges_[u].size(), nf = vertex_facets_[u].size();
+      const unsigned long long k = index_.vertex_edges[u].size(), nf = corners_[u].size();
       const unsigned long long here = k * (k - (k > 0)) / 2 + k * nf;
       total += here;
       if (here > worst) worst = here, worst_vertex = u;
     }
     if (total <= kMaxAngles) return;
-    throw InputError(InputErrorKind::too_large, "the analysis would list up to " + std::to_string(total) +
-                                                    " edge-edge and edge-facet angles, beyond its budget of " +
-                                                    std::to_string(kMaxAngles) + " angles (PLC vertex " +
-                                                    std::to_string(worst_vertex) + " has " +
-                                                    std::to_string(vertex_edges_[worst_vertex].size()) + " edges and " +
-                                                    std::to_string(vertex_facets_[worst_vertex].size()) + " facets)");
+    throw InputError(InputErrorKind::too_large,
+                     "the analysis would list up to " + std::to_string(total) +
+                         " edge-edge and edge-facet angles, beyond its budget of " + std::to_string(kMaxAngles) +
+                         " angles (PLC vertex " + std::to_string(worst_vertex) + " has " +
+                         std::to_string(index_.vertex_edges[worst_vertex].size()) + " edges and " +
+                         std::to_string(corners_[worst_vertex].size()) + " facets)");
   }
 
   /// Exact: the angle is acute iff (p - u).(v - u) > 0 for some p in F. That
@@ -423,9 +414,7 @@ class Analyzer {
   /// 40 degrees locally). The exact acuteness test above is literal too.
   double edge_facet_degrees(int u, int v, int f) const {
     const V w = sub(P(v), P(u));
-    const V& n = frames_[f].unit;
-    const double wn = dot(w, n);
-    const double plane_angle = std::atan2(std::fabs(wn), norm(sub(w, geometry::mul(n, wn)))) * (180 / kPi);
+    const double plane_angle = plane_degrees(w, f);
     double best = 180;
     for (const auto& loop : plc_.facets[f].loops) {
       const std::size_t m = loop.size();
@@ -460,8 +449,8 @@ class Analyzer {
         const std::size_t m = loop.size();
         for (std::size_t r = 0; r < m; ++r) {
           const int x = loop[r], y = loop[(r + 1) % m];
-          const int w = vertex_edges_[x].size() <= vertex_edges_[y].size() ? x : y;
-          for (int e : vertex_edges_[w]) {
+          const int w = index_.vertex_edges[x].size() <= index_.vertex_edges[y].size() ? x : y;
+          for (int e : index_.vertex_edges[w]) {
             if (other_end(e, w) != (w == x ? y : x)) continue;
             for (int side = 0; side < 2; ++side)
               if (plc_.edges[e].facets[side] == f && traversal_[e][side].first < 0) {
@@ -490,7 +479,7 @@ class Analyzer {
       // its facet's boundary) the edge gets 180 / 180, not sharp, and does not
       // count for phi_m: analyze never throws.
       DihedralAngle d{e, 180, 180, false};
-      if (f1 < 0 || f2 < 0 || !frames_[f1].valid() || !frames_[f2].valid()) {
+      if (f1 < 0 || f2 < 0 || !normals_[f1].valid() || !normals_[f2].valid()) {
         a.dihedral.push_back(d);
         continue;
       }
@@ -511,8 +500,8 @@ class Analyzer {
       const int wedge_sign = exact::sign([&, x1 = x1, y1 = y1, x2 = x2, y2 = y2](auto z) {
         return dotn(tangent(f1, x1, y1, z), tangent(f2, x2, y2, z));
       });
-      const V t1 = cross(frames_[f1].unit, geometry::unit(sub(P(y1), P(x1))));
-      const V t2 = cross(frames_[f2].unit, geometry::unit(sub(P(y2), P(x2))));
+      const V t1 = cross(normals_[f1].unit, geometry::unit(sub(P(y1), P(x1))));
+      const V t2 = cross(normals_[f2].unit, geometry::unit(sub(P(y2), P(x2))));
       const double wedge = angle_degrees(t1, t2);
       const bool convex = convex_sign < 0;
       d.internal_degrees = convex ? wedge : 360 - wedge;
@@ -540,10 +529,11 @@ class Analyzer {
   }
 
   const PLC& plc_;
+  const PlcIndex& index_;
   AnalysisOptions options_;
-  std::vector<std::vector<int>> vertex_edges_;
-  std::vector<std::vector<Corner>> vertex_facets_;
-  std::vector<FacetFrame> frames_;
+  /// Per vertex: the index's corners with their fast flags.
+  std::vector<std::vector<Corner>> corners_;
+  std::vector<ExactNormal> normals_;
   /// Per edge, per facet side: the direction a loop of that facet runs along it.
   std::vector<std::array<std::pair<int, int>, 2>> traversal_;
 };
@@ -557,10 +547,19 @@ Analysis analyze(const PLC& plc, const AnalysisOptions& options) {
   // represented so are refused (out_of_range).
   const int E = normalisation_exponent(plc);
   check_representable(plc, E, options.box_margin);
-  if (E == 0) return Analyzer(plc, options).run();
+  // The index is built here once, on the PLC the analysis runs on, and kept
+  // in the Analysis for the mesher (which runs on the same scaled copy).
+  if (E == 0) {
+    auto index = std::make_shared<const PlcIndex>(plc);
+    Analysis a = Analyzer(plc, *index, options).run();
+    a.index = std::move(index);
+    return a;
+  }
   const PLC scaled = scaled_plc(plc, -E);
-  Analysis a = Analyzer(scaled, options).run();
+  auto index = std::make_shared<const PlcIndex>(scaled);
+  Analysis a = Analyzer(scaled, *index, options).run();
   scale_analysis(a, E);
+  a.index = std::move(index);
   return a;
 }
 

@@ -101,17 +101,37 @@ inline bool orthosphere(const Point3 (&p)[4], const double (&w)[4], Point3& z, d
 
 /// Newell's normal of the closed polygon vertices[loop[0]], vertices[loop[1]],
 /// ...: twice its vector area (robust for non-convex loops), pointing to the
-/// side from which the loop turns counter-clockwise; not normalised.
-inline Point3 newell_normal(const std::vector<Point3>& vertices, const std::vector<int>& loop) {
+/// side from which the loop turns counter-clockwise; not normalised. With
+/// `scale` (a power of two, so exact: validation scales against overflow and
+/// underflow) it is the normal of the polygon scaled by it; scale 1 changes no
+/// bit.
+inline Point3 newell_normal(const std::vector<Point3>& vertices, const std::vector<int>& loop, double scale = 1) {
+  const double s = scale;
   Point3 nw{{0, 0, 0}};
   for (std::size_t i = 0; i < loop.size(); ++i) {
     const Point3& a = vertices[loop[i]];
     const Point3& b = vertices[loop[(i + 1) % loop.size()]];
-    nw[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    nw[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    nw[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    nw[0] += (a[1] * s - b[1] * s) * (a[2] * s + b[2] * s);
+    nw[1] += (a[2] * s - b[2] * s) * (a[0] * s + b[0] * s);
+    nw[2] += (a[0] * s - b[0] * s) * (a[1] * s + b[1] * s);
   }
   return nw;
+}
+
+/// Twice the vector area of the closed polygon vertices[loop[0]], ...,
+/// summed as the fan of cross products (p_m - p_0) x (p_{m+1} - p_0) about
+/// its first vertex: the same vector as newell_normal up to rounding, but
+/// rounded on differences from p_0 (so independent of where the polygon
+/// lies); not normalised.
+inline Point3 fan_area_vector(const std::vector<Point3>& vertices, const std::vector<int>& loop) {
+  Point3 n{{0, 0, 0}};
+  if (loop.empty()) return n;
+  const Point3& o = vertices[loop[0]];
+  for (std::size_t m = 1; m + 1 < loop.size(); ++m) {
+    const Point3 c = cross(sub(vertices[loop[m]], o), sub(vertices[loop[m + 1]], o));
+    for (int q = 0; q < 3; ++q) n[q] += c[q];
+  }
+  return n;
 }
 
 }  // namespace wqmesh::geometry

@@ -22,13 +22,13 @@
 #include <vector>
 
 #include "geometry.h"
+#include "plc_index.h"
 #include "wqmesh/analysis.h"
 
 namespace wqmesh {
 namespace {
 
 using V = Point3;
-using geometry::cross;
 using geometry::dot;
 using geometry::sub;
 
@@ -84,34 +84,23 @@ struct Node {
   int begin = 0, end = 0;     ///< leaf: elements [begin, end)
 };
 
-/// A facet prepared for point-in-polygon tests: unit normal (Newell's, outer
-/// loop) and the axis dropped when projecting to 2D.
-struct FacetPlane {
-  V normal{{0, 0, 0}};
-  V origin{{0, 0, 0}};
-  int drop = 2;
-};
-
 class FeatureSearch {
  public:
-  FeatureSearch(const PLC& plc) : plc_(plc) {
-    const int nv = static_cast<int>(plc.vertices.size());
-    vertex_facets_.assign(nv, {});
-    planes_.resize(plc.facets.size());
+  /// The facets' planes (origin and unit normal) and incidence come from
+  /// the index's frames and vertex_facets.
+  FeatureSearch(const PLC& plc, const PlcIndex& index) : plc_(plc), index_(index) {
+    drop_.assign(plc.facets.size(), 2);
     for (int f = 0; f < static_cast<int>(plc.facets.size()); ++f) {
       const PlcFacet& facet = plc.facets[f];
       Aabb box;
       for (const auto& loop : facet.loops)
-        for (int v : loop) {
-          box.add(plc.vertices[v]);
-          vertex_facets_[v].push_back(f);
-        }
-      prepare_plane(f);
+        for (int v : loop) box.add(plc.vertices[v]);
+      // The axis dropped when projecting the facet to 2D: the normal's largest.
+      const V& n = index.frames[f].plane_n;
+      drop_[f] = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::fabs(n[k]) > std::fabs(n[drop_[f]])) drop_[f] = k;
       add(Kind::facet, f, box);
-    }
-    for (auto& list : vertex_facets_) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
     }
     for (int e = 0; e < static_cast<int>(plc.edges.size()); ++e) {
       Aabb box;
@@ -119,7 +108,7 @@ class FeatureSearch {
       box.add(plc.vertices[plc.edges[e].b]);
       add(Kind::edge, e, box);
     }
-    for (int v = 0; v < nv; ++v) {
+    for (int v = 0; v < static_cast<int>(plc.vertices.size()); ++v) {
       Aabb box;
       box.add(plc.vertices[v]);
       add(Kind::vertex, v, box);
@@ -162,27 +151,6 @@ class FeatureSearch {
     elements_.push_back({kind, index, box, c});
   }
 
-  void prepare_plane(int f) {
-    const PlcFacet& facet = plc_.facets[f];
-    FacetPlane& plane = planes_[f];
-    if (facet.loops.empty() || facet.loops[0].empty()) return;
-    const auto& loop = facet.loops[0];
-    const V& o = plc_.vertices[loop[0]];
-    V n{{0, 0, 0}};
-    for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-      const V c = cross(sub(plc_.vertices[loop[i]], o), sub(plc_.vertices[loop[i + 1]], o));
-      for (int k = 0; k < 3; ++k) n[k] += c[k];
-    }
-    const double len = std::sqrt(dot(n, n));
-    if (!(len > 0)) return;
-    for (int k = 0; k < 3; ++k) n[k] /= len;
-    plane.normal = n;
-    plane.origin = o;
-    plane.drop = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::fabs(n[k]) > std::fabs(n[plane.drop])) plane.drop = k;
-  }
-
   int build(int begin, int end) {
     const int id = static_cast<int>(nodes_.size());
     nodes_.push_back({});
@@ -211,7 +179,7 @@ class FeatureSearch {
   }
 
   bool facet_contains_vertex(int f, int u) const {
-    const auto& list = vertex_facets_[u];
+    const auto& list = index_.vertex_facets[u];
     return std::binary_search(list.begin(), list.end(), f);
   }
 
@@ -244,18 +212,18 @@ class FeatureSearch {
   /// so the facet need not report it.
   double facet_distance2(int f, int u, double best2) const {
     constexpr double inf = std::numeric_limits<double>::infinity();
-    const FacetPlane& plane = planes_[f];
-    if (plane.normal[0] == 0 && plane.normal[1] == 0 && plane.normal[2] == 0) return inf;
+    const PlcIndex::Frame& plane = index_.frames[f];
+    if (plane.plane_n[0] == 0 && plane.plane_n[1] == 0 && plane.plane_n[2] == 0) return inf;
     if (facet_contains_vertex(f, u)) return inf;
     const V& p = plc_.vertices[u];
-    const double h = dot(sub(p, plane.origin), plane.normal);
+    const double h = dot(sub(p, plane.origin), plane.plane_n);
     if (h * h >= best2) return inf;
     // Crossing-number test of q, the orthogonal projection of u on the
     // plane, in the 2D view that drops the dominant normal axis (a parallel
     // projection of the plane, so inside stays inside); holes by parity.
-    const V q{{p[0] - h * plane.normal[0], p[1] - h * plane.normal[1], p[2] - h * plane.normal[2]}};
-    const int ax = plane.drop == 0 ? 1 : 0;
-    const int ay = plane.drop == 2 ? 1 : 2;
+    const V q{{p[0] - h * plane.plane_n[0], p[1] - h * plane.plane_n[1], p[2] - h * plane.plane_n[2]}};
+    const int ax = drop_[f] == 0 ? 1 : 0;
+    const int ay = drop_[f] == 2 ? 1 : 2;
     const double px = q[ax], py = q[ay];
     bool inside = false;
     for (const auto& loop : plc_.facets[f].loops) {
@@ -273,8 +241,8 @@ class FeatureSearch {
   }
 
   const PLC& plc_;
-  std::vector<std::vector<int>> vertex_facets_;
-  std::vector<FacetPlane> planes_;
+  const PlcIndex& index_;
+  std::vector<int> drop_;  ///< per facet: the axis its 2D view drops
   std::vector<Element> elements_;
   std::vector<Node> nodes_;
 };
@@ -282,10 +250,16 @@ class FeatureSearch {
 }  // namespace
 
 std::vector<double> local_feature_sizes(const PLC& plc, const std::vector<int>& vertices, const Box& bounding_box) {
+  if (vertices.empty()) return {};
+  return local_feature_sizes(plc, PlcIndex(plc), vertices, bounding_box);
+}
+
+std::vector<double> local_feature_sizes(const PLC& plc, const PlcIndex& index, const std::vector<int>& vertices,
+                                        const Box& bounding_box) {
   std::vector<double> result;
   result.reserve(vertices.size());
   if (vertices.empty()) return result;
-  const FeatureSearch search(plc);
+  const FeatureSearch search(plc, index);
   for (int u : vertices) {
     const V& p = plc.vertices[u];
     // Distance to the boundary of B (u is inside B).

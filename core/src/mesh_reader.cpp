@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "reader_detect.h"
+
 namespace wqmesh {
 
 namespace {
@@ -164,20 +166,6 @@ int to_index(long long value, long long base) {
   return (v < 0 || v > 2147483647LL) ? -1 : static_cast<int>(v);
 }
 
-std::string read_bytes(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(InputErrorKind::io, "cannot read '" + path + "': it is a folder");
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw InputError(InputErrorKind::io, "cannot open '" + path + "': " + std::strerror(errno));
-  const std::streamoff end = in.tellg();
-  if (end < 0) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
-  std::string bytes(static_cast<std::size_t>(end), '\0');
-  in.seekg(0);
-  if (end > 0 && !in.read(&bytes[0], end)) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
-  return bytes;
-}
-
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
@@ -319,7 +307,7 @@ TetMesh read_tetgen(const char* node, std::size_t node_size, const char* ele, st
 TetMesh read_tet_mesh_file(const std::string& path) {
   try {
     if (ends_with(path, ".mesh")) {
-      const std::string bytes = read_bytes(path);
+      const std::string bytes = read_file_bytes(path);
       return read_medit(bytes.data(), bytes.size());
     }
     std::string base;
@@ -331,8 +319,8 @@ TetMesh read_tet_mesh_file(const std::string& path) {
       throw InputError(InputErrorKind::syntax,
                        "unknown mesh format: the name must end in .mesh (Medit) or .ele/.node (TetGen)");
     }
-    const std::string node = read_bytes(base + ".node");
-    const std::string ele = read_bytes(base + ".ele");
+    const std::string node = read_file_bytes(base + ".node");
+    const std::string ele = read_file_bytes(base + ".ele");
     return read_tetgen(node.data(), node.size(), ele.data(), ele.size());
   } catch (const InputError& e) {
     throw InputError(e.kind(), path + ": " + e.what());

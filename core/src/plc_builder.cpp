@@ -16,6 +16,7 @@
 
 #include "cgal_types.h"
 #include "exact.h"
+#include "geometry.h"
 #include "hashing.h"
 #include "validation.h"
 #include "wqmesh/input.h"
@@ -364,7 +365,7 @@ double winding_number(const std::vector<Point3>& pts, const std::vector<std::arr
         len[0] * len[1] * len[2] + dot3(v[0], v[1]) * len[2] + dot3(v[0], v[2]) * len[1] + dot3(v[1], v[2]) * len[0];
     total += 2 * std::atan2(det, den);
   }
-  return total / (4 * 3.14159265358979323846);
+  return total / (4 * geometry::kPi);
 }
 
 void Builder::orient_outwards() {

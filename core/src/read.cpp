@@ -3,7 +3,9 @@
 // content (see input.h).
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -95,20 +97,25 @@ void throw_unknown_format(const char* data, std::size_t size, const char* what) 
                                                " bytes long");
 }
 
-PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& limits) {
+std::string read_file_bytes(const std::string& path, std::size_t max_bytes) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError(InputErrorKind::io, "cannot read '" + path + "': it is a folder");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) throw InputError(InputErrorKind::io, "cannot open '" + path + "'");
+  if (!in) throw InputError(InputErrorKind::io, "cannot open '" + path + "': " + std::strerror(errno));
   const std::streamoff end = in.tellg();
   if (end < 0) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
-  if (static_cast<unsigned long long>(end) > limits.max_bytes)
+  if (static_cast<unsigned long long>(end) > max_bytes)
     throw InputError(InputErrorKind::too_large, "'" + path + "' has " + std::to_string(end) +
-                                                    " bytes, beyond the limit of " + std::to_string(limits.max_bytes));
+                                                    " bytes, beyond the limit of " + std::to_string(max_bytes));
   std::string bytes(static_cast<std::size_t>(end), '\0');
   in.seekg(0);
   if (end > 0 && !in.read(&bytes[0], end)) throw InputError(InputErrorKind::io, "cannot read '" + path + "'");
+  return bytes;
+}
+
+PolygonSoup read_polyhedron_file(const std::string& path, const InputLimits& limits) {
+  const std::string bytes = read_file_bytes(path, limits.max_bytes);
   try {
     return read_polyhedron(bytes.data(), bytes.size(), limits);
   } catch (const InputError& e) {

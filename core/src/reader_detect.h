@@ -5,11 +5,19 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <string>
 
 namespace wqmesh {
 
 /// 3 when the data starts with a UTF-8 byte order mark (EF BB BF), else 0.
 std::size_t utf8_bom_length(const char* data, std::size_t size);
+
+/// The bytes of the file at `path`. Throws InputError: io when it is a folder
+/// or cannot be opened ("cannot open 'PATH': REASON") or read; too_large when
+/// it has more than `max_bytes` bytes ("'PATH' has N bytes, beyond the limit
+/// of M"), before reading any.
+std::string read_file_bytes(const std::string& path, std::size_t max_bytes = std::numeric_limits<std::size_t>::max());
 
 /// 84 + 50 n for the triangle count n in bytes 80-83 (little endian): the
 /// size of a binary STL with this header. Needs at least 84 bytes.

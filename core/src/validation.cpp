@@ -11,6 +11,7 @@
 
 #include "cgal_types.h"
 #include "exact.h"
+#include "geometry.h"
 
 namespace wqmesh::validation {
 
@@ -124,16 +125,7 @@ bool triangulate_polygon(const std::vector<Point3>& pts, const std::vector<int>&
   double big = 0;
   for (int v : poly)
     for (double x : pts[v]) big = std::max(big, std::fabs(x));
-  const double s = power_of_two_scale(big);
-  std::array<double, 3> nrm{{0, 0, 0}};
-  for (int i = 0; i < n; ++i) {
-    const Point3& p = pts[poly[i]];
-    const Point3& q = pts[poly[(i + 1) % n]];
-    for (int a = 0; a < 3; ++a) {
-      const int b = (a + 1) % 3, c = (a + 2) % 3;
-      nrm[a] += (p[b] * s - q[b] * s) * (p[c] * s + q[c] * s);
-    }
-  }
+  const Point3 nrm = geometry::newell_normal(pts, poly, power_of_two_scale(big));
   std::array<int, 3> rank{{0, 1, 2}};
   auto size = [&](int a) { return std::isfinite(nrm[a]) ? std::fabs(nrm[a]) : 0.0; };
   std::stable_sort(rank.begin(), rank.end(), [&](int a, int b) { return size(a) > size(b); });

@@ -2,7 +2,7 @@
 // wqmesh: libFuzzer target of the mesher itself (issue 10): bytes -> a small
 // star-shaped polyhedron -> check_polyhedron -> mesh_polyhedron under a
 // vertex limit. The bytes choose a subdivided octahedron (6, 18 or 66
-// vertices), a power-of-two scale and an offset, and per vertex a radius
+// vertices, tests/native/decimated_surface.h's subdivision), a power-of-two scale and an offset, and per vertex a radius
 // (quantised to 1/64, so that neighbouring triangles are often exactly
 // coplanar and merge into larger facets, with small angles and nearly
 // coplanar facets between them) and a small angular jitter; then the mesh
@@ -27,7 +27,9 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
+#include "decimated_surface.h"
 #include "fuzz_check.h"
+#include "geometry.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/report.h"
 
@@ -47,36 +49,13 @@ class Bytes {
   std::size_t size_, pos_ = 0;
 };
 
-Point3 unit(const Point3& p) {
-  const double l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-  return {{p[0] / l, p[1] / l, p[2] / l}};
-}
-
-// The octahedron subdivided `levels` times, its points on the unit sphere;
-// faces counter-clockwise seen from outside.
-void octasphere(int levels, std::vector<Point3>& points, std::vector<std::array<int, 3>>& faces) {
-  points = {{{1, 0, 0}}, {{-1, 0, 0}}, {{0, 1, 0}}, {{0, -1, 0}}, {{0, 0, 1}}, {{0, 0, -1}}};
-  faces = {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}};
-  for (int k = 0; k < levels; ++k) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
-      const auto it = middle.find(key);
-      if (it != middle.end()) return it->second;
-      const Point3 &p = points[a], &q = points[b];
-      points.push_back(unit({{p[0] + q[0], p[1] + q[1], p[2] + q[2]}}));
-      return middle[key] = static_cast<int>(points.size()) - 1;
-    };
-    std::vector<std::array<int, 3>> next;
-    for (const auto& f : faces) {
-      const int ab = mid(f[0], f[1]), bc = mid(f[1], f[2]), ca = mid(f[2], f[0]);
-      next.push_back({{f[0], ab, ca}});
-      next.push_back({{f[1], bc, ab}});
-      next.push_back({{f[2], ca, bc}});
-      next.push_back({{ab, bc, ca}});
-    }
-    faces = next;
-  }
+/// The octahedron subdivided `levels` times, its points on the unit sphere;
+/// faces counter-clockwise seen from outside.
+wqmesh::testing::TriSurface octasphere(int levels) {
+  wqmesh::testing::TriSurface s;
+  s.points = {{{1, 0, 0}}, {{-1, 0, 0}}, {{0, 1, 0}}, {{0, -1, 0}}, {{0, 0, 1}}, {{0, 0, -1}}};
+  s.faces = {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}}, {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}};
+  return wqmesh::testing::subdivided_on_unit_sphere(s, levels);
 }
 
 }  // namespace
@@ -88,9 +67,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int exponent = static_cast<int>(in.next() % 81) - 40;  // scale 2^-40 .. 2^40
   const double scale = std::ldexp(1.0, exponent);
   const double offset = scale * (static_cast<int>(in.next()) - 128) / 64.0;
-  std::vector<Point3> points;
-  std::vector<std::array<int, 3>> faces;
-  octasphere(levels, points, faces);
+  using wqmesh::testing::on_unit_sphere;
+  wqmesh::testing::TriSurface sphere = octasphere(levels);
+  std::vector<Point3>& points = sphere.points;
   // Jitter below a tenth of the smallest edge's angle (0.39 rad at level 2):
   // the spherical triangulation stays valid.
   for (Point3& p : points) {
@@ -98,9 +77,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const double j1 = (static_cast<int>(in.next()) - 128) / 128.0 * 0.03;
     const double j2 = (static_cast<int>(in.next()) - 128) / 128.0 * 0.03;
     // Two directions orthogonal to p.
-    const Point3 a = unit(std::fabs(p[0]) < 0.9 ? Point3{{0, p[2], -p[1]}} : Point3{{-p[2], 0, p[0]}});
-    const Point3 b{{p[1] * a[2] - p[2] * a[1], p[2] * a[0] - p[0] * a[2], p[0] * a[1] - p[1] * a[0]}};
-    const Point3 d = unit({{p[0] + j1 * a[0] + j2 * b[0], p[1] + j1 * a[1] + j2 * b[1], p[2] + j1 * a[2] + j2 * b[2]}});
+    const Point3 a = on_unit_sphere(std::fabs(p[0]) < 0.9 ? Point3{{0, p[2], -p[1]}} : Point3{{-p[2], 0, p[0]}});
+    const Point3 b = wqmesh::geometry::cross(p, a);
+    const Point3 d =
+        on_unit_sphere({{p[0] + j1 * a[0] + j2 * b[0], p[1] + j1 * a[1] + j2 * b[1], p[2] + j1 * a[2] + j2 * b[2]}});
     for (int k = 0; k < 3; ++k) p[k] = r * d[k] * scale + offset;
   }
   const unsigned opts = in.next();
@@ -110,14 +90,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.pump = (opts & 4) == 0;
   if (opts & 8) o.max_size = 0.3 * scale;
 
-  std::string off = "OFF\n" + std::to_string(points.size()) + " " + std::to_string(faces.size()) + " 0\n";
-  char line[96];
-  for (const Point3& p : points) {
-    std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
-    off += line;
-  }
-  for (const auto& f : faces)
-    off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+  const std::string off = wqmesh::testing::to_off(sphere);
   const wqmesh::CheckResult c = wqmesh::check_polyhedron(off.data(), off.size());
   if (!c.valid) {
     std::fprintf(stderr, "wqmesh fuzz: a star-shaped polyhedron was rejected: %s: %s\n%s", c.error_kind.c_str(),

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/error.h"
 #include "wqmesh/input.h"
@@ -22,7 +23,7 @@
 namespace wqmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using geometry::kPi;
 double deg(double radians) { return radians * 180 / kPi; }
 
 /// A PLC from vertices and facets given by their outer loops (counter-
@@ -173,28 +174,22 @@ void check_invariants(const PLC& plc, const Analysis& a, std::size_t brute_strid
     EXPECT_EQ(d.sharp, std::binary_search(a.sharp_edges.begin(), a.sharp_edges.end(), d.edge));
     phi = std::min({phi, d.internal_degrees, d.external_degrees});
   }
-  for (const auto& x : a.edge_edge) {
-    EXPECT_GE(x.degrees, 0);
-    EXPECT_LE(x.degrees, 180);
-    // acute is exact, degrees rounded: they agree up to rounding.
-    if (x.acute)
-      EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-edge";
-    else
-      EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-edge";
-    if (x.acute) EXPECT_TRUE(std::binary_search(a.sharp_vertices.begin(), a.sharp_vertices.end(), x.vertex));
-    phi = std::min(phi, x.degrees);
-  }
-  for (const auto& x : a.edge_facet) {
-    EXPECT_GE(x.degrees, 0);
-    EXPECT_LE(x.degrees, 180);
-    // acute is exact, degrees rounded: they agree up to rounding.
-    if (x.acute)
-      EXPECT_LT(x.degrees, 90 + 1e-9) << "edge-facet";
-    else
-      EXPECT_GT(x.degrees, 90 - 1e-9) << "edge-facet";
-    if (x.acute) EXPECT_TRUE(std::binary_search(a.sharp_vertices.begin(), a.sharp_vertices.end(), x.vertex));
-    phi = std::min(phi, x.degrees);
-  }
+  // Edge-edge and edge-facet angles alike.
+  auto check_angles = [&](const auto& angles, const char* what) {
+    for (const auto& x : angles) {
+      EXPECT_GE(x.degrees, 0);
+      EXPECT_LE(x.degrees, 180);
+      // acute is exact, degrees rounded: they agree up to rounding.
+      if (x.acute)
+        EXPECT_LT(x.degrees, 90 + 1e-9) << what;
+      else
+        EXPECT_GT(x.degrees, 90 - 1e-9) << what;
+      if (x.acute) EXPECT_TRUE(std::binary_search(a.sharp_vertices.begin(), a.sharp_vertices.end(), x.vertex));
+      phi = std::min(phi, x.degrees);
+    }
+  };
+  check_angles(a.edge_edge, "edge-edge");
+  check_angles(a.edge_facet, "edge-facet");
   EXPECT_DOUBLE_EQ(a.phi_m_degrees, phi);
   EXPECT_TRUE(std::is_sorted(a.sharp_vertices.begin(), a.sharp_vertices.end()));
   EXPECT_TRUE(std::is_sorted(a.sharp_edges.begin(), a.sharp_edges.end()));

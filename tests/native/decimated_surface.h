@@ -6,6 +6,8 @@
 // is a facet of its own). Deterministic: the same Config gives the same
 // surface on every platform (std::mt19937_64 and only + - * / sqrt on
 // doubles; no std:: distribution, whose output the standard leaves open).
+// Also the helpers other generated inputs share: subdivision on the unit
+// sphere, OFF text.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -54,25 +56,20 @@ struct TriSurface {
   std::vector<std::array<int, 3>> faces;  ///< counter-clockwise seen from outside
 };
 
-namespace detail {
+/// p / |p| (|p| = sqrt(p.p), then each coordinate divided by it).
+inline Point3 on_unit_sphere(const Point3& p) {
+  const double l = std::sqrt(geometry::dot(p, p));
+  return Point3{{p[0] / l, p[1] / l, p[2] / l}};
+}
 
-/// A uniform double in [0, 1) from the top 53 bits.
-inline double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
-
-/// The icosahedron subdivided `levels` times, on the unit sphere.
-inline TriSurface icosphere(int levels) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
-  TriSurface s;
-  s.points = {{{-1, t, 0}},  {{1, t, 0}},  {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}},  {{0, 1, t}},
-              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}},  {{t, 0, 1}},  {{-t, 0, -1}}, {{-t, 0, 1}}};
-  s.faces = {{{0, 11, 5}},  {{0, 5, 1}},  {{0, 1, 7}},  {{0, 7, 10}}, {{0, 10, 11}}, {{1, 5, 9}}, {{5, 11, 4}},
-             {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},  {{3, 9, 4}},  {{3, 4, 2}},   {{3, 2, 6}}, {{3, 6, 8}},
-             {{3, 8, 9}},   {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}}, {{8, 6, 7}},   {{9, 8, 1}}};
-  auto unit = [](Point3 p) {
-    const double l = std::sqrt(geometry::dot(p, p));
-    return Point3{{p[0] / l, p[1] / l, p[2] / l}};
-  };
-  for (Point3& p : s.points) p = unit(p);
+/// `s` (a triangulated polyhedron around the origin, faces counter-clockwise
+/// seen from outside) with its points moved to the unit sphere, then
+/// subdivided `levels` times: each triangle into four, each edge's midpoint
+/// (p + q) / 2 moved to the sphere. This exact arithmetic makes the regression
+/// seeds of regression_test.cpp (icosphere) the surfaces that crashed the old
+/// code; the fuzz target's octasphere uses it too.
+inline TriSurface subdivided_on_unit_sphere(TriSurface s, int levels) {
+  for (Point3& p : s.points) p = on_unit_sphere(p);
   for (int k = 0; k < levels; ++k) {
     std::map<std::pair<int, int>, int> middle;
     auto mid = [&](int a, int b) {
@@ -80,7 +77,7 @@ inline TriSurface icosphere(int levels) {
       const auto it = middle.find(key);
       if (it != middle.end()) return it->second;
       const Point3 &p = s.points[a], &q = s.points[b];
-      s.points.push_back(unit({{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}));
+      s.points.push_back(on_unit_sphere({{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}));
       return middle[key] = static_cast<int>(s.points.size()) - 1;
     };
     std::vector<std::array<int, 3>> faces;
@@ -97,10 +94,47 @@ inline TriSurface icosphere(int levels) {
   return s;
 }
 
+/// An OFF file of `points` and `faces` (each a sequence of vertex indices,
+/// any number of them): coordinates with 17 significant digits, so that they
+/// read back exactly.
+template <class Faces>
+std::string to_off(const std::vector<Point3>& points, const Faces& faces) {
+  std::ostringstream out;
+  out << "OFF\n" << points.size() << " " << faces.size() << " 0\n";
+  char buf[96];
+  for (const Point3& p : points) {
+    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
+    out << buf;
+  }
+  for (const auto& f : faces) {
+    out << f.size();
+    for (int v : f) out << " " << v;
+    out << "\n";
+  }
+  return out.str();
+}
+
+/// The icosahedron subdivided `levels` times, on the unit sphere.
+inline TriSurface icosphere(int levels) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  TriSurface s;
+  s.points = {{{-1, t, 0}},  {{1, t, 0}},  {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}},  {{0, 1, t}},
+              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}},  {{t, 0, 1}},  {{-t, 0, -1}}, {{-t, 0, 1}}};
+  s.faces = {{{0, 11, 5}},  {{0, 5, 1}},  {{0, 1, 7}},  {{0, 7, 10}}, {{0, 10, 11}}, {{1, 5, 9}}, {{5, 11, 4}},
+             {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},  {{3, 9, 4}},  {{3, 4, 2}},   {{3, 2, 6}}, {{3, 6, 8}},
+             {{3, 8, 9}},   {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}}, {{8, 6, 7}},   {{9, 8, 1}}};
+  return subdivided_on_unit_sphere(s, levels);
+}
+
+namespace detail {
+
+/// A uniform double in [0, 1) from the top 53 bits.
+inline double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * (1.0 / 9007199254740992.0); }
+
 /// A torus (radii 1 and 0.4) on an n x m grid.
 inline TriSurface torus(int n, int m) {
   TriSurface s;
-  const double pi = 3.14159265358979323846;
+  const double pi = geometry::kPi;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < m; ++j) {
       const double u = 2 * pi * i / n, v = 2 * pi * j / m;
@@ -239,16 +273,6 @@ inline TriSurface decimated_surface(const DecimationConfig& c) {
   return out;
 }
 
-inline std::string to_off(const TriSurface& s) {
-  std::ostringstream out;
-  out << "OFF\n" << s.points.size() << " " << s.faces.size() << " 0\n";
-  char buf[96];
-  for (const Point3& p : s.points) {
-    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
-    out << buf;
-  }
-  for (const auto& f : s.faces) out << "3 " << f[0] << " " << f[1] << " " << f[2] << "\n";
-  return out.str();
-}
+inline std::string to_off(const TriSurface& s) { return to_off(s.points, s.faces); }
 
 }  // namespace wqmesh::testing

@@ -36,6 +36,7 @@
 
 #include <unistd.h>
 
+#include "decimated_surface.h"
 #include "geometry.h"
 #include "mesh_invariants.h"
 #include "wqmesh/mesher.h"
@@ -46,7 +47,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kPi = 3.14159265358979323846;
+using geometry::kPi;
 /// A run that takes longer is cancelled and fails: it would not end in a test
 /// (the runs take seconds; the margin is for sanitizer builds and busy machines).
 constexpr double kDeadlineSeconds = 300;
@@ -58,21 +59,7 @@ struct Soup {
   std::vector<std::vector<int>> faces;
 };
 
-std::string to_off(const Soup& s) {
-  std::ostringstream out;
-  out << "OFF\n" << s.points.size() << " " << s.faces.size() << " 0\n";
-  char buf[96];
-  for (const Point3& p : s.points) {
-    std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", p[0], p[1], p[2]);
-    out << buf;
-  }
-  for (const auto& f : s.faces) {
-    out << f.size();
-    for (int v : f) out << " " << v;
-    out << "\n";
-  }
-  return out.str();
-}
+std::string to_off(const Soup& s) { return testing::to_off(s.points, s.faces); }
 
 // x -> x * scale + offset, for every point.
 Soup transformed(Soup s, double scale, const Point3& offset) {
@@ -163,38 +150,12 @@ Soup flat_tet(double h) {
 }
 
 // An icosahedron subdivided `levels` times, its points projected on the unit
-// sphere (cospherical up to rounding).
+// sphere (cospherical up to rounding): decimated_surface.h's.
 Soup icosphere(int levels) {
-  const double t = (1 + std::sqrt(5.0)) / 2;
+  const testing::TriSurface t = testing::icosphere(levels);
   Soup s;
-  s.points = {{{-1, t, 0}},  {{1, t, 0}},  {{-1, -t, 0}}, {{1, -t, 0}}, {{0, -1, t}},  {{0, 1, t}},
-              {{0, -1, -t}}, {{0, 1, -t}}, {{t, 0, -1}},  {{t, 0, 1}},  {{-t, 0, -1}}, {{-t, 0, 1}}};
-  s.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-             {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  auto unit = [](Point3 p) {
-    const double l = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    return Point3{{p[0] / l, p[1] / l, p[2] / l}};
-  };
-  for (Point3& p : s.points) p = unit(p);
-  for (int k = 0; k < levels; ++k) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto it = middle.find(key);
-      if (it != middle.end()) return it->second;
-      const Point3 &p = s.points[a], &q = s.points[b];
-      s.points.push_back(unit({{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}));
-      return middle[key] = static_cast<int>(s.points.size()) - 1;
-    };
-    std::vector<std::vector<int>> faces;
-    for (const auto& f : s.faces) {
-      const int a = f[0], b = f[1], c = f[2];
-      const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-      faces.insert(faces.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
-    }
-    s.faces = faces;
-  }
+  s.points = t.points;
+  for (const auto& f : t.faces) s.faces.push_back({f[0], f[1], f[2]});
   return s;
 }
 

@@ -804,7 +804,7 @@ TEST(Plc, LargeStarPolygonsTriangulate) {
   const int n = 30000;
   std::vector<Point3> pts;
   for (int i = 0; i < n; ++i) {
-    const double t = 2 * M_PI * i / n, r = i % 2 ? 0.8 : 1;
+    const double t = 2 * geometry::kPi * i / n, r = i % 2 ? 0.8 : 1;
     pts.push_back({{r * std::cos(t), r * std::sin(t), 0}});
   }
   std::vector<int> poly(n);
@@ -831,7 +831,7 @@ TEST(Plc, LargeStarPolygonsTriangulate) {
   const int m = 4000;
   std::vector<Point3> prism;
   for (int i = 0; i < m; ++i) {
-    const double t = 2 * M_PI * i / m, r = i % 2 ? 0.8 : 1;
+    const double t = 2 * geometry::kPi * i / m, r = i % 2 ? 0.8 : 1;
     prism.push_back({{r * std::cos(t), r * std::sin(t), 0}});
   }
   for (int i = 0; i < m; ++i) prism.push_back({{prism[i][0], prism[i][1], 1}});

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,8 @@ struct AnalysisOptions {
   double box_margin = 0.5;
 };
 
+struct PlcIndex;  // private (core/src/plc_index.h)
+
 /// The paper's input analysis. Sharp edge: internal or external dihedral angle
 /// acute. Sharp vertex: an acute edge-edge or edge-facet angle at it, or an
 /// endpoint of a sharp edge. f(u) at a sharp vertex u: the distance from u to
@@ -64,6 +67,11 @@ struct Analysis {
   double phi_m_degrees = 180;           ///< smallest input angle
   Box input_box, bounding_box;
   double box_margin = 0.5;
+  /// Private: the PLC's vertex incidence and facet frames (core/src/plc_index.h),
+  /// built once by analyze, in the coordinates it ran on (the input scaled by
+  /// 2^-E), and reused by the mesher when it meshes the same PLC. Empty in an
+  /// Analysis made otherwise: the mesher then builds it.
+  std::shared_ptr<const PlcIndex> index;
 };
 
 Analysis analyze(const PLC& plc, const AnalysisOptions& options = {});

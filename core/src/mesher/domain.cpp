@@ -1,6 +1,6 @@
 // wqmesh: the domain P, the input PLC with the bounding box B (paper, section
-// 2), indexed once for the mesher: vertex incidence, facet frames, vertex
-// balls and their sectors (section 4.1).
+// 2), with the input's index (plc_index.h) extended to B, the vertex balls
+// and their sectors (section 4.1).
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
@@ -65,6 +65,12 @@ int Sector::initial_splits() const {
 // ---- P = the input PLC with the bounding box B ----------------------------------
 
 Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
+  // The input's index, built once by analyze (an Analysis made otherwise, or
+  // of another PLC, gets it built here), then B's elements added.
+  if (analysis.index && analysis.index->built_from(plc))
+    static_cast<PlcIndex&>(*this) = *analysis.index;
+  else
+    extend(plc);
   input_vertices = static_cast<int>(plc.vertices.size());
   input_edges = static_cast<int>(plc.edges.size());
   input_facets = static_cast<int>(plc.facets.size());
@@ -104,22 +110,9 @@ Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
     p.facets.push_back(facet);
   }
 
-  const std::size_t nv = p.vertices.size();
-  vertex_facets.assign(nv, {});
-  vertex_edges.assign(nv, {});
-  for (int e = 0; e < static_cast<int>(p.edges.size()); ++e) {
-    vertex_edges[p.edges[e].a].push_back(e);
-    vertex_edges[p.edges[e].b].push_back(e);
-  }
-  for (int f = 0; f < static_cast<int>(p.facets.size()); ++f)
-    for (const auto& loop : p.facets[f].loops)
-      for (int v : loop)
-        if (vertex_facets[v].empty() || vertex_facets[v].back() != f) vertex_facets[v].push_back(f);
-  for (auto& fs : vertex_facets) {
-    std::sort(fs.begin(), fs.end());
-    fs.erase(std::unique(fs.begin(), fs.end()), fs.end());
-  }
+  extend(p);
 
+  const std::size_t nv = p.vertices.size();
   sharp_vertex.assign(nv, 0);
   sharp_edge.assign(p.edges.size(), 0);
   ball_radius.assign(nv, 0);
@@ -142,45 +135,6 @@ Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
     const double a = smallest[v] * kPi / 180;
     sos_asymmetry[v] = std::min(kSosAsymmetry, a * a / 64);
   }
-
-  // A 2D frame per facet: origin at its first vertex, e1 along its first edge.
-  frames.resize(p.facets.size());
-  for (std::size_t f = 0; f < p.facets.size(); ++f) {
-    Frame& fr = frames[f];
-    const auto& loop = p.facets[f].loops[0];
-    fr.origin = p.vertices[loop[0]];
-    // Newell's normal of the outer loop (robust for non-convex facets).
-    fr.n = unit(newell_normal(p.vertices, loop));
-    fr.e1 = unit(sub(p.vertices[loop[1]], fr.origin));
-    fr.e1 = unit(sub(fr.e1, mul(fr.n, dot(fr.e1, fr.n))));
-    fr.e2 = cross(fr.n, fr.e1);
-    for (const auto& l : p.facets[f].loops) {
-      fr.loops.emplace_back();
-      for (int v : l) fr.loops.back().push_back(to2d(static_cast<int>(f), p.vertices[v]));
-    }
-  }
-}
-
-std::array<double, 2> Domain::to2d(int f, const Point3& x) const {
-  const Frame& fr = frames[f];
-  const Point3 d = sub(x, fr.origin);
-  return {{dot(d, fr.e1), dot(d, fr.e2)}};
-}
-
-bool Domain::inside_facet(int f, const Point3& x) const {
-  const std::array<double, 2> q = to2d(f, x);
-  bool inside = false;
-  for (const auto& loop : frames[f].loops) {
-    const std::size_t n = loop.size();
-    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-      const auto &a = loop[i], &b = loop[j];
-      if ((a[1] > q[1]) != (b[1] > q[1])) {
-        const double x_cross = a[0] + (q[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-        if (q[0] < x_cross) inside = !inside;
-      }
-    }
-  }
-  return inside;
 }
 
 Sector Domain::sector(int u, int f, int prev, int next) const {
@@ -210,10 +164,6 @@ std::size_t Domain::initialize_points() const {
     for_each_corner(u, [&](int f, int prev, int next) { n += sector(u, f, prev, next).initial_splits(); });
   }
   return n;
-}
-
-bool Domain::facet_has_vertex(int f, int v) const {
-  return std::binary_search(vertex_facets[v].begin(), vertex_facets[v].end(), f);
 }
 
 }  // namespace wqmesh::mesher

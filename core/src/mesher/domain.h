@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "plc_index.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/types.h"
 
@@ -34,11 +35,13 @@ struct Sector {
 };
 
 // ---- P: the input PLC with the bounding box B (section 2) --------------------
-struct Domain {
+/// P with its index (PlcIndex: vertex_edges, vertex_facets, frames, to2d,
+/// inside_facet, facet_has_vertex over P's elements, B's included): the
+/// index analyze built for the input, copied and extended with B, or built
+/// here when the Analysis does not carry the index of this PLC.
+struct Domain : PlcIndex {
   PLC p;  ///< input elements first, then B's 8 vertices, 12 edges, 6 facets
   int input_vertices = 0, input_edges = 0, input_facets = 0;
-  std::vector<std::vector<int>> vertex_facets;  ///< facets whose loops hold a P vertex
-  std::vector<std::vector<int>> vertex_edges;
   std::vector<char> sharp_vertex, sharp_edge;
   std::vector<double> ball_radius;  ///< f(u)/4 at sharp vertices, else 0
   /// Per vertex: how far off the middle SOS splits the arcs of its ball,
@@ -46,21 +49,11 @@ struct Domain {
   /// radians (beyond the paper; see domain.cpp).
   std::vector<double> sos_asymmetry;
   static constexpr double kSosAsymmetry = 3.14159265358979323846 / 1000;
-  struct Frame {
-    Point3 origin, e1, e2, n;
-    std::vector<std::vector<std::array<double, 2>>> loops;  ///< 2D loops
-  };
-  std::vector<Frame> frames;  ///< per facet
-  Box box;                    ///< B
+  Box box;  ///< B
   Box input_box;
 
   Domain(const PLC& plc, const Analysis& analysis);
   bool is_box_facet(int f) const { return f >= input_facets; }
-  std::array<double, 2> to2d(int f, const Point3& x) const;
-  /// Whether x (projected on the plane of facet f) lies inside f (even-odd rule
-  /// over its loops).
-  bool inside_facet(int f, const Point3& x) const;
-  bool facet_has_vertex(int f, int v) const;
   /// The sector of facet f at the sharp vertex u, whose loop runs prev, u,
   /// next: it turns counter-clockwise about the facet normal from the edge
   /// u-next (t = 0) to the edge u-prev (t = span), inside the vertex ball.
