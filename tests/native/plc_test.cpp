@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_input_error.h"
 #include "geometry.h"
 #include "validation.h"
 #include "wqmesh/input.h"
@@ -186,16 +187,14 @@ std::vector<std::vector<int>> box_triangles() {
   return t;
 }
 
-template <class F>
-std::string expect_error(F f, InputErrorKind kind) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected " << error_kind_name(kind);
-  } catch (const InputError& e) {
-    EXPECT_STREQ(error_kind_name(e.kind()), error_kind_name(kind)) << e.what();
-    return e.what();
-  }
-  return {};
+/// build_plc's error of `kind` on `soup`, and its message.
+std::string build_error(const PolygonSoup& soup, InputErrorKind kind) {
+  return testing::expect_input_error(
+      [&] {
+        Warnings w;
+        build_plc(soup, w);
+      },
+      kind);
 }
 
 bool has_warning(const Warnings& w, const std::string& needle) {
@@ -503,86 +502,46 @@ TEST(Plc, RandomGridCubesAreValidOrRejected) {
 TEST(Plc, Errors) {
   const auto pts = box_points(1, 1, 1);
   std::string m;
-  expect_error(
-      [] {
-        Warnings w;
-        build_plc(PolygonSoup{}, w);
-      },
-      InputErrorKind::empty);
+  build_error(PolygonSoup{}, InputErrorKind::empty);
   {
     auto p = pts;
     p[2][1] = std::nan("");
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, box_quads()), w);
-        },
-        InputErrorKind::non_finite);
+    m = build_error(soup_of(p, box_quads()), InputErrorKind::non_finite);
     EXPECT_NE(m.find("point 2"), std::string::npos) << m;
   }
   {
     auto f = box_quads();
     f[4][1] = 8;
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(pts, f), w);
-        },
-        InputErrorKind::bad_index);
+    m = build_error(soup_of(pts, f), InputErrorKind::bad_index);
     EXPECT_NE(m.find("face 4 (line 104)"), std::string::npos) << m;
   }
   {
     // Three faces closing up combinatorially.
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(pts, {{0, 1, 2, 3}, {0, 3, 2}, {0, 2, 1}}), w);
-        },
-        InputErrorKind::too_few_faces);
+    m = build_error(soup_of(pts, {{0, 1, 2, 3}, {0, 3, 2}, {0, 2, 1}}), InputErrorKind::too_few_faces);
   }
   {
     auto p = pts;
     p.push_back({0.5, 0, 0});  // 8, on the edge 0-1
     auto f = box_triangles();
     f.push_back({0, 8, 1});
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, f), w);
-        },
-        InputErrorKind::degenerate_face);
+    m = build_error(soup_of(p, f), InputErrorKind::degenerate_face);
     EXPECT_NE(m.find("face 12 (line 112)"), std::string::npos) << m;
     auto g = box_triangles();
     g[5] = {0, 0, 1};
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(pts, g), w);
-        },
-        InputErrorKind::degenerate_face);
+    m = build_error(soup_of(pts, g), InputErrorKind::degenerate_face);
     EXPECT_NE(m.find("face 5"), std::string::npos) << m;
   }
   {
     auto f = box_triangles();
     f.push_back({2, 1, 0});
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(pts, f), w);
-        },
-        InputErrorKind::duplicate_face);
+    m = build_error(soup_of(pts, f), InputErrorKind::duplicate_face);
     EXPECT_NE(m.find("face 1 (line 101)"), std::string::npos) << m;  // {0, 2, 1}
     EXPECT_NE(m.find("face 12 (line 112)"), std::string::npos) << m;
   }
   {
     auto f = box_triangles();
     f.pop_back();
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(pts, f), w);
-        },
-        InputErrorKind::open_boundary);
+    m = build_error(soup_of(pts, f), InputErrorKind::open_boundary);
     EXPECT_NE(m.find("vertex"), std::string::npos) << m;
   }
   {
@@ -595,12 +554,7 @@ TEST(Plc, Errors) {
       for (int& v : t) v = v == 0 ? 2 : v == 4 ? 6 : v + 8;
       f.push_back(t);
     }
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, f), w);
-        },
-        InputErrorKind::non_manifold_edge);
+    m = build_error(soup_of(p, f), InputErrorKind::non_manifold_edge);
     EXPECT_NE(m.find("4 faces"), std::string::npos) << m;
   }
   {
@@ -612,12 +566,7 @@ TEST(Plc, Errors) {
       for (int& v : t) v = v == 0 ? 6 : v + 8;
       f.push_back(t);
     }
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, f), w);
-        },
-        InputErrorKind::non_manifold_vertex);
+    m = build_error(soup_of(p, f), InputErrorKind::non_manifold_vertex);
     EXPECT_NE(m.find("(1, 1, 1)"), std::string::npos) << m;
   }
   {
@@ -642,12 +591,7 @@ TEST(Plc, Errors) {
         f.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
         f.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
       }
-    expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, f), w);
-        },
-        InputErrorKind::not_orientable);
+    build_error(soup_of(p, f), InputErrorKind::not_orientable);
   }
   {
     // A closed box with a spike poking through its top: a tetrahedron-like
@@ -663,12 +607,7 @@ TEST(Plc, Errors) {
     f.push_back({8, 11, 10});
     f.push_back({8, 9, 11});
     f.push_back({9, 10, 11});
-    m = expect_error(
-        [&] {
-          Warnings w;
-          build_plc(soup_of(p, f), w);
-        },
-        InputErrorKind::self_intersection);
+    m = build_error(soup_of(p, f), InputErrorKind::self_intersection);
     EXPECT_NE(m.find("face"), std::string::npos) << m;
   }
 }
