@@ -66,7 +66,7 @@ const std::vector<StopReason>& all_stop_reasons() {
 
 const std::vector<MeshPhase>& all_mesh_phases() {
   static const std::vector<MeshPhase> all = {MeshPhase::initialize, MeshPhase::conform, MeshPhase::refine,
-                                             MeshPhase::pump, MeshPhase::extract, MeshPhase::improve};
+                                             MeshPhase::pump,       MeshPhase::extract, MeshPhase::improve};
   return all;
 }
 

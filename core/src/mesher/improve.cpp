@@ -77,6 +77,7 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
     : r_(r), rho_(rho), max_size_(max_size), keep_going_(keep_going), P_(r.mesh.vertices) {
   const TetMesh& m = r.mesh;
   tets_ = m.tets;
+  initial_tets_ = tets_.size();
   q_.resize(tets_.size());
   for (std::size_t t = 0; t < tets_.size(); ++t) {
     const Tet& T = tets_[t];
@@ -526,6 +527,56 @@ bool Improver::flip22(int t, int i, int j) {
   return true;
 }
 
+double Improver::ascend(int v, const std::vector<Tet>& tets, double current, double lmin,
+                        const std::function<bool()>& valid) {
+  auto quality_at = [&](const Tet& T, const Point3& x) {
+    Point3 p[4];
+    for (int k = 0; k < 4; ++k) p[k] = T[k] == v ? x : P_[T[k]];
+    return min_sine(p[0], p[1], p[2], p[3]);
+  };
+  auto worst_at = [&](const Point3& x) {
+    double w = HUGE_VAL;
+    for (const Tet& T : tets) w = std::min(w, quality_at(T, x));
+    return w;
+  };
+  for (int step = 0; step < kSmoothSteps; ++step) {
+    // The gradient of each nearly worst tet (central differences); the
+    // direction is the sum of their unit gradients (nonsmooth ascent).
+    const double h = 1e-7 * lmin;
+    Point3 dir{{0, 0, 0}};
+    for (const Tet& T : tets) {
+      if (quality_at(T, P_[v]) > current + 1e-3) continue;
+      Point3 g;
+      for (int c = 0; c < 3; ++c) {
+        Point3 p = P_[v], m = P_[v];
+        p[c] += h;
+        m[c] -= h;
+        g[c] = (quality_at(T, p) - quality_at(T, m)) / (2 * h);
+      }
+      dir = geometry::add(dir, geometry::unit(g));
+    }
+    if (!(norm(dir) > 0)) break;
+    dir = geometry::unit(dir);
+    bool better = false;
+    for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
+      const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
+      const double w = worst_at(x);
+      if (!(w > current)) continue;
+      const Point3 keep = P_[v];
+      P_[v] = x;
+      if (!valid()) {
+        P_[v] = keep;
+        continue;
+      }
+      current = w;
+      better = true;
+      break;
+    }
+    if (!better) break;
+  }
+  return current;
+}
+
 bool Improver::smooth(int v) {
   if (v < 0 || v >= int(fixed_.size()) || fixed_[v]) return false;
   std::vector<int> S;
@@ -533,9 +584,11 @@ bool Improver::smooth(int v) {
   if (S.empty()) return false;
   double worst_old = HUGE_VAL, size_cap = max_size_, lmin = HUGE_VAL;
   int violations = 0;
+  std::vector<Tet> tets;
   for (int t : S) {
     worst_old = std::min(worst_old, q_[t]);
     const Tet& T = tets_[t];
+    tets.push_back(T);
     violations += violation(T);
     if (max_size_ > 0) {
       double rl, R;
@@ -547,71 +600,20 @@ bool Improver::smooth(int v) {
   }
   lmin = std::sqrt(lmin);
   if (!(lmin > 0)) return false;
-  const Point3 start = P_[v];
-  auto quality_at = [&](int t, const Point3& x) {
-    Point3 p[4];
-    for (int k = 0; k < 4; ++k) p[k] = tets_[t][k] == v ? x : P_[tets_[t][k]];
-    return min_sine(p[0], p[1], p[2], p[3]);
+  // Each step: every tet of the star positive (exact), within max_size, and
+  // no more violations than before.
+  const auto valid = [&] {
+    int left = violations;
+    for (const Tet& T : tets)
+      if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) || (left -= violation(T)) < 0)
+        return false;
+    return true;
   };
-  auto star_worst = [&](const Point3& x) {
-    double w = HUGE_VAL;
-    for (int t : S) w = std::min(w, quality_at(t, x));
-    return w;
-  };
-  bool moved = false;
-  double current = worst_old;
-  for (int step = 0; step < kSmoothSteps; ++step) {
-    // The gradient of each nearly worst tet (central differences); the
-    // direction is the sum of their unit gradients (nonsmooth ascent).
-    const double h = 1e-7 * lmin;
-    Point3 dir{{0, 0, 0}};
-    for (int t : S) {
-      const double qt = quality_at(t, P_[v]);
-      if (qt > current + 1e-3) continue;
-      Point3 g;
-      for (int c = 0; c < 3; ++c) {
-        Point3 p = P_[v], m = P_[v];
-        p[c] += h;
-        m[c] -= h;
-        g[c] = (quality_at(t, p) - quality_at(t, m)) / (2 * h);
-      }
-      dir = geometry::add(dir, geometry::unit(g));
-    }
-    if (!(norm(dir) > 0)) break;
-    dir = geometry::unit(dir);
-    bool better = false;
-    for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
-      const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
-      const double w = star_worst(x);
-      if (!(w > current)) continue;
-      const Point3 keep = P_[v];
-      P_[v] = x;
-      bool ok = true;
-      int left = violations;
-      for (int t : S) {
-        const Tet& T = tets_[t];
-        if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) ||
-            (left -= violation(T)) < 0) {
-          ok = false;
-          break;
-        }
-      }
-      if (!ok) {
-        P_[v] = keep;
-        continue;
-      }
-      current = w;
-      better = true;
-      break;
-    }
-    if (!better) break;
-    moved = true;
+  if (!(ascend(v, tets, worst_old, lmin, valid) > worst_old)) return false;
+  for (int t : S) {
+    const Tet& T = tets_[t];
+    q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
   }
-  if (!moved) {
-    P_[v] = start;
-    return false;
-  }
-  for (int t : S) q_[t] = quality_at(t, P_[v]);
   ++clock_;
   for (int t : S) touch(tets_[t]);
   ++st_.smoothed;
@@ -628,6 +630,17 @@ bool Improver::insert(int t) {
   std::vector<Point3> candidates;
   if (std::isfinite(r2)) candidates.push_back(cc);
   candidates.push_back(g);
+  // Beyond Stellar's choice: for each face of t, the apex of a regular tet on
+  // it, on t's side (where the bad dihedral angle is at a boundary edge, the
+  // point that makes a good tet on the boundary face).
+  for (int k = 0; k < 4; ++k) {
+    const Tri f = outward_face(T0, k);
+    const Point3 &x = P_[f[0]], &y = P_[f[1]], &z = P_[f[2]];
+    const Point3 n = geometry::unit(cross(sub(y, x), sub(z, x)));  // outward of t: into t is -n
+    const double l = (norm(sub(y, x)) + norm(sub(z, y)) + norm(sub(x, z))) / 3;
+    Point3 c{{(x[0] + y[0] + z[0]) / 3, (x[1] + y[1] + z[1]) / 3, (x[2] + y[2] + z[2]) / 3}};
+    candidates.push_back(geometry::add(c, geometry::mul(n, -std::sqrt(2.0 / 3) * l)));
+  }
   double best = -HUGE_VAL;
   std::vector<int> best_old;
   std::vector<Tet> best_fresh;
@@ -689,19 +702,37 @@ bool Improver::insert(int t) {
       cav.push_back(grow);
     }
     if (ok && std::find(cav.begin(), cav.end(), t) != cav.end()) {
+      // Beyond Stellar's rule as written: the new point is first placed by
+      // the smoothing ascent on its own star (the cavity stays), then the
+      // insertion is judged.
+      double lmin = HUGE_VAL, current = HUGE_VAL;
+      for (const Tet& T : fresh) {
+        current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+        for (int k = 0; k < 3; ++k) lmin = std::min(lmin, geometry::dist2(P_[T[k]], p));
+      }
+      lmin = std::sqrt(lmin);
+      if (lmin > 0)
+        ascend(p_id, fresh, current, lmin, [&] {
+          for (const Tet& T : fresh)
+            if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
+          return true;
+        });
       vtet_.push_back(-1);
       double w;
       if (accept(cav, fresh, w) && w > best) {
         best = w;
         best_old = cav;
         best_fresh = fresh;
-        best_p = p;
+        best_p = P_[p_id];
       }
       vtet_.pop_back();
     }
     P_.pop_back();
   }
   if (best_fresh.empty()) return false;
+  const std::size_t live = tets_.size() - free_slots_.size() + best_fresh.size() - best_old.size();
+  if (double(live) > std::max(kMaxTetGrowth * double(initial_tets_), double(initial_tets_ + kMinTetSlack)))
+    return false;
   P_.push_back(best_p);
   vtet_.push_back(-1);
   fixed_.push_back(0);
