@@ -4,7 +4,8 @@
 //   mesh(bytes: Uint8Array, options: object|undefined, progress: function|undefined)
 //     -> { stats: string (JSON), vertices: Float64Array, weights: Float64Array,
 //          tets: Uint32Array, boundary: Uint32Array, boundaryFacet: Int32Array,
-//          tetClass: Uint8Array, minDihedral: Float64Array, radiusEdge: Float64Array,
+//          tetClass: Uint8Array, minDihedral: Float64Array, radiusEdge: Float64Array
+//          (unweighted R/l), orthoradiusEdge: Float64Array (with the weights),
 //          protectingBalls: Float64Array, protectingBallIsVertex: Uint8Array }
 //        or { error: { kind, message } }
 //   writeMesh(result: object, format: "medit"|"vtu"|"tetgen", bytes: boolean)
@@ -384,6 +385,7 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     const auto* tris = reinterpret_cast<const std::uint32_t*>(r.mesh.boundary.data());
     std::vector<std::uint8_t> classes, ball_is_vertex;
     std::vector<double> angles, radius_edge, balls;
+    const std::vector<double>& orthoradius_edge = r.orthoradius_edge;
     for (wqmesh::TetClass c : r.tet_class) classes.push_back(static_cast<std::uint8_t>(c));
     for (const wqmesh::TetQuality& q : r.quality) {
       angles.push_back(q.min_dihedral_deg);
@@ -402,6 +404,7 @@ val mesh(const val& bytes, const val& options, const val& progress) {
     out.set("boundaryFacet", copy_out(r.mesh.boundary_facet.data(), r.mesh.boundary_facet.size()));
     out.set("tetClass", copy_out(classes.data(), classes.size()));
     out.set("minDihedral", copy_out(angles.data(), angles.size()));
+    out.set("orthoradiusEdge", copy_out(orthoradius_edge.data(), orthoradius_edge.size()));
     out.set("radiusEdge", copy_out(radius_edge.data(), radius_edge.size()));
     out.set("protectingBalls", copy_out(balls.data(), balls.size()));
     out.set("protectingBallIsVertex", copy_out(ball_is_vertex.data(), ball_is_vertex.size()));
@@ -494,7 +497,7 @@ val write_mesh(const val& result, const std::string& format, bool bytes) {
       std::ostringstream out;
       wqmesh::TetLabels labels;
       labels.tet_class = classes;
-      wqmesh::write_vtu(out, m, wqmesh::mesh_quality(m), &labels);
+      wqmesh::write_vtu(out, m, wqmesh::mesh_quality(m, {}, false), &labels);
       return text_value(out.str(), bytes);
     }
     if (format == "tetgen") {

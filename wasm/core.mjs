@@ -124,7 +124,7 @@ export function runMesh(module, bytes, options, onProgress) {
 
 /** The typed arrays of a result, to transfer. */
 export function resultBuffers(r) {
-  return ['vertices', 'weights', 'tets', 'boundary', 'boundaryFacet', 'tetClass', 'minDihedral', 'radiusEdge',
+  return ['vertices', 'weights', 'tets', 'boundary', 'boundaryFacet', 'tetClass', 'minDihedral', 'radiusEdge', 'orthoradiusEdge',
           'protectingBalls', 'protectingBallIsVertex'].map((k) => r[k]?.buffer).filter((b) => b instanceof ArrayBuffer);
 }
 

@@ -377,7 +377,14 @@ export interface MeshStats {
   tets: number;
   /** The smallest dihedral angle of the mesh, degrees (0 without tets). */
   min_dihedral_deg: number;
-  /** Table 2 of the paper: tets by R/l. */
+  /** The largest R/l (circumradius over shortest edge, unweighted) of the mesh. */
+  max_radius_edge: number;
+  /**
+   * Table 2 of the paper: tets by R/l. Like every statistic and class here
+   * (but the `orthoradius_*` keys), on the mesh as written, unweighted: a
+   * recount from the written mesh and {@link MeshStats.protecting_balls}
+   * gives the same numbers (`wqmesh measure MESH --stats STATS`).
+   */
   radius_edge_bins: { '0.6-1.4': number; '1.4-2.2': number; '>2.2': number };
   /** Table 2 of the paper: tets by smallest dihedral angle, degrees. */
   dihedral_bins: { '0-3': number; '3-5': number; '5-10': number };
@@ -385,10 +392,26 @@ export interface MeshStats {
   slivers: number;
   /** Tets with R/l above rho0. */
   skinny: number;
-  /** Skinny tets and slivers near a small input angle (allowed there). */
+  /**
+   * Skinny tets and slivers near a small input angle (allowed there): the
+   * circumcenter on or inside a protecting ball (c, r), or a vertex v with
+   * |v - c|^2 <= (2r)^2 + L_v^2/9, L_v its shortest edge in the mesh.
+   */
   near_small_angle: number;
   /** Skinny tets and slivers not near a small input angle (class 3). */
   violations: number;
+  /** near_small_angle over tets (0 without tets). */
+  near_small_angle_share: number;
+  /**
+   * The weighted view (the paper's own measure for a pumped mesh; no class
+   * uses it): tets by orthoradius-edge ratio, with PUMP's weights, in Table
+   * 2's bins and below 0.6 (a weighted ratio can be).
+   */
+  orthoradius_edge_bins: { '<0.6': number; '0.6-1.4': number; '1.4-2.2': number; '>2.2': number };
+  /** The largest orthoradius-edge ratio of the mesh (weighted view). */
+  max_orthoradius_edge: number;
+  /** Tets with orthoradius-edge ratio above rho0 (weighted view; the paper's skinny for a pumped mesh). */
+  orthoradius_skinny: number;
   /** Interior slivers at the end of REFINE, before PUMP. */
   slivers_before_pump: number;
   /** Vertices PUMP gave a weight. */
@@ -441,6 +464,9 @@ export interface MeshStats {
     skinny_before: number;
     near_small_angle_before: number;
     violations_before: number;
+    /** The tets of the mesh before it, and the share of them near a small angle. */
+    tets_before: number;
+    near_small_angle_share_before: number;
   };
   /** Points inserted by each rule: [0] INITIALIZE, [i] rule i (1..7). */
   rule_points: number[];
@@ -466,6 +492,8 @@ export interface MeshStats {
     kind: 'skinny' | 'sliver';
     min_dihedral_deg: number;
     radius_edge: number;
+    /** The weighted view of the same tet. */
+    orthoradius_edge: number;
   }[];
 }
 
@@ -491,8 +519,10 @@ export interface MeshResult {
   tetClass: Uint8Array;
   /** Per tet: its smallest dihedral angle in degrees. */
   minDihedral: Float64Array;
-  /** Per tet: R/l, circumradius (orthoradius once weighted) over shortest edge. */
+  /** Per tet: R/l, circumradius over shortest edge (unweighted, as the classes). */
   radiusEdge: Float64Array;
+  /** Per tet: the orthoradius-edge ratio with {@link MeshResult.weights} (the weighted view). */
+  orthoradiusEdge: Float64Array;
   /** Four numbers per protecting ball: center x, y, z and radius. */
   protectingBalls: Float64Array;
   /** Per protecting ball: 1 for a vertex ball (radius f(u)/4), 0 for a doubled segment ball. */
@@ -595,7 +625,8 @@ export function writeMedit(result: WriterInput, options: WriteOptions & { bytes:
 /**
  * The result as a VTK `.vtu` file (ASCII XML, the native command line's
  * writer), written in a worker. Every file has the same arrays: cell data
- * `min_dihedral` (degrees), `radius_edge` (R/l), `radius_ratio_R_over_r`
+ * `min_dihedral` (degrees), `radius_edge` (R/l, unweighted),
+ * `orthoradius_edge` (with the weights), `radius_ratio_R_over_r`
  * (circumradius over inradius, 3 for a regular tet: not VTK's normalised
  * aspect ratio), `volume`, `class` (as {@link MeshResult.tetClass}); point
  * data `weight`.

@@ -458,7 +458,8 @@ async function pickTet(tet, move) {
   row('vertices', info.vertices.join(', '));
   info.points.forEach((p, i) => row(`v${i}`, p.map((x) => x.toPrecision(6)).join(', ')));
   row('smallest dihedral', `${info.minDihedral < 1 ? info.minDihedral.toPrecision(3) : info.minDihedral.toFixed(3)} deg`);
-  row(info.radiusEdgeWeighted ? 'R/l (orthoradius if weighted)' : 'R/l', info.radiusEdge.toFixed(3));
+  row('R/l', info.radiusEdge.toFixed(3));
+  if (info.orthoradiusEdge !== undefined) row('orthoradius / l (weighted)', info.orthoradiusEdge.toFixed(3));
   row('class', info.className);
   if (info.near) row('why near', info.near);
   $('pick').replaceChildren(dl);

@@ -10,6 +10,7 @@ export const STAT_GROUPS = [
   ['Counts', [
     ['vertices', 'vertices'], ['tets', 'tets'], ['min_dihedral_deg', 'smallest dihedral (deg)'],
     ['slivers', 'slivers'], ['skinny', 'skinny'], ['near_small_angle', 'near a small angle'],
+    ['near_small_angle_share', 'share near a small angle'],
     ['violations', 'violations'], ['pumped_vertices', 'pumped vertices'], ['conforming', 'conforming'],
     ['stopped', 'stopped'], ['volume_input', 'volume of the input'], ['volume_mesh', 'volume of the mesh'],
   ]],
@@ -18,6 +19,17 @@ export const STAT_GROUPS = [
     ['radius_edge_bins.0.6-1.4', 'tets with R/l 0.6-1.4'], ['radius_edge_bins.1.4-2.2', 'R/l 1.4-2.2'],
     ['radius_edge_bins.>2.2', 'R/l > 2.2'], ['dihedral_bins.0-3', 'tets, min dihedral 0-3 deg'],
     ['dihedral_bins.3-5', 'min dihedral 3-5 deg'], ['dihedral_bins.5-10', 'min dihedral 5-10 deg'],
+  ]],
+  ['Weighted view (orthoradius with PUMP\'s weights; no class uses it)', [
+    ['orthoradius_edge_bins.0.6-1.4', 'tets with orthoradius/l 0.6-1.4'],
+    ['orthoradius_edge_bins.1.4-2.2', 'orthoradius/l 1.4-2.2'], ['orthoradius_edge_bins.>2.2', 'orthoradius/l > 2.2'],
+    ['orthoradius_edge_bins.<0.6', 'orthoradius/l < 0.6'],
+  ]],
+  ['Before the improvement phase (the counts above are after it)', [
+    ['improve.skinny_before', 'skinny'], ['improve.slivers_before', 'slivers'],
+    ['improve.near_small_angle_before', 'near a small angle'], ['improve.violations_before', 'violations'],
+    ['improve.near_small_angle_share_before', 'share near a small angle'],
+    ['improve.min_dihedral_before', 'smallest dihedral (deg)'],
   ]],
   ['Table 1 (paper): effect of sliver exudation', [
     ['slivers_before_pump', 'slivers after QMESH'], ['slivers', 'slivers after WQMESH'],

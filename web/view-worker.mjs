@@ -136,7 +136,7 @@ function circum(p) {
   return { center: [a[0] + off[0], a[1] + off[1], a[2] + off[2]], ratio: R / l };
 }
 
-/** N(v) for each of the given vertices: the shortest mesh edge at v (one pass over the tets). */
+/** L_v for each of the given vertices: the shortest mesh edge at v (one pass over the tets). */
 function nearestOver(ids) {
   const T = mesh.tets, V = mesh.vertices;
   const best = ids.map(() => Infinity);
@@ -164,12 +164,11 @@ function tetMessage({ tet, stats }) {
   const c = circum(pts);
   const cls = mesh.tetClass[tet];
   const ratio = mesh.radiusEdge ? mesh.radiusEdge[tet] : c.ratio;
-  // Why near, by the core's rule (README, "Every output tet has a class"):
-  // its circumcenter on or inside a protecting ball (c, r), or a vertex v
-  // with |v - c|^2 <= (2r)^2 + N(v)^2/9, N(v) the distance from v to its
-  // nearest other vertex. Here the circumcenter is the unweighted one and
-  // N(v) is taken over the mesh edges at v (one pass over the tets), so for
-  // pumped vertices the reason shown may differ from the core's.
+  const orthoratio = mesh.orthoradiusEdge ? mesh.orthoradiusEdge[tet] : undefined;
+  // Why near, by the core's rule (README, "Every output tet has a class";
+  // core/src/mesher/classify.h): its circumcenter on or inside a protecting
+  // ball (c, r), or a vertex v with |v - c|^2 <= (2r)^2 + L_v^2/9, L_v the
+  // shortest mesh edge at v, both on the unweighted mesh, as here.
   let near = '';
   const balls = (stats && stats.protecting_balls) || [];
   if (cls === 1 || cls === 2) {
@@ -181,9 +180,9 @@ function tetMessage({ tet, stats }) {
       const nn = nearestOver(ids);
       for (let k = 0; k < 4 && !near; ++k) {
         const j = balls.findIndex((b) => dot(sub(pts[k], b.center), sub(pts[k], b.center)) <= 4 * b.radius ** 2 + nn[k] ** 2 / 9);
-        if (j >= 0) near = `vertex ${ids[k]} within (2r)^2 + N(v)^2/9 of ${name(j)}`;
+        if (j >= 0) near = `vertex ${ids[k]} within (2r)^2 + L_v^2/9 of ${name(j)}`;
       }
-      if (!near) near = 'near by the weighted rule of the core (not found from the unweighted circumcenter)';
+      if (!near) near = 'near by the core (a test within rounding of a ball\'s boundary here)';
     }
   }
   const g = pts.reduce((s, p) => s.map((x, k) => x + p[k] / 4), [0, 0, 0]);
@@ -192,7 +191,7 @@ function tetMessage({ tet, stats }) {
   return {
     value: {
       tet, vertices: ids, points: pts, minDihedral: mesh.minDihedral[tet], radiusEdge: ratio,
-      radiusEdgeWeighted: Boolean(mesh.radiusEdge), cls, className: CLASS_NAMES[cls] || String(cls), near,
+      orthoradiusEdge: orthoratio, cls, className: CLASS_NAMES[cls] || String(cls), near,
       centroid: g.map((x, k) => x - origin[k]), size,
       corners: new Float32Array(pts.flatMap((p) => p.map((x, k) => x - origin[k]))),
       faces: TET_FACES,

@@ -1,5 +1,7 @@
 // wqmesh: the statistics of a meshing run as JSON (see wqmesh/mesher.h).
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "scaling.h"
@@ -27,12 +29,31 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("points_inserted", r.points_inserted);
   j.field("vertices", r.mesh.vertices.size());
   j.field("tets", r.mesh.tets.size());
+  // Every statistic and class on the mesh as written, unweighted (classify.h
+  // in core/src/mesher: recountable from the mesh file and protecting_balls).
   j.field("min_dihedral_deg", r.mesh.tets.empty() ? 0.0 : s.min_dihedral_deg);
+  j.field("max_radius_edge", s.max_radius_edge);
   write_quality_bins(j, s);
   j.field("slivers", r.slivers);
   j.field("skinny", r.skinny);
   j.field("near_small_angle", r.near_small_angle);
   j.field("violations", r.violations);
+  j.field("near_small_angle_share", r.mesh.tets.empty() ? 0.0 : double(r.near_small_angle) / r.mesh.tets.size());
+  // The weighted view (the paper's own measure for a pumped mesh): the
+  // orthoradius-edge ratio with PUMP's weights, in Table 2's bins; no class
+  // depends on it.
+  std::array<std::size_t, 4> ortho_bins{};  // below 0.6, then Table 2's three
+  double max_ortho = 0;
+  for (double rho : r.orthoradius_edge) {
+    ++ortho_bins[radius_edge_bin(rho) + 1];
+    max_ortho = std::max(max_ortho, rho);
+  }
+  j.key("orthoradius_edge_bins").begin_object();
+  j.field("<0.6", ortho_bins[0]).field("0.6-1.4", ortho_bins[1]).field("1.4-2.2", ortho_bins[2]);
+  j.field(">2.2", ortho_bins[3]);
+  j.end_object();
+  j.field("max_orthoradius_edge", max_ortho);
+  j.field("orthoradius_skinny", r.orthoradius_skinny);
   j.field("slivers_before_pump", r.slivers_before_pump);
   j.field("pumped_vertices", r.pumped_vertices);
   j.field("volume_input", plc_volume(plc));
@@ -64,6 +85,9 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("min_dihedral_before", im.min_dihedral_before).field("min_dihedral_after", im.min_dihedral_after);
   j.field("slivers_before", im.slivers_before).field("skinny_before", im.skinny_before);
   j.field("near_small_angle_before", im.near_small_angle_before).field("violations_before", im.violations_before);
+  j.field("tets_before", im.tets_before);
+  j.field("near_small_angle_share_before",
+          im.tets_before == 0 ? 0.0 : double(im.near_small_angle_before) / im.tets_before);
   j.end_object();
   j.key("rule_points").begin_array();
   for (std::size_t n : r.rule_points) j.value(n);
@@ -91,6 +115,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
     j.key("vertices").begin_array().value(t[0]).value(t[1]).value(t[2]).value(t[3]).end_array();
     j.field("kind", q.radius_edge > options.rho0 ? "skinny" : "sliver");
     j.field("min_dihedral_deg", q.min_dihedral_deg).field("radius_edge", q.radius_edge);
+    if (i < r.orthoradius_edge.size()) j.field("orthoradius_edge", r.orthoradius_edge[i]);
     j.end_object();
   }
   j.end_array();

@@ -95,6 +95,12 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
       vtu_float_array(out, "min_dihedral", m,
                       [&](std::size_t i) { return quality[i].min_dihedral_deg; });
       vtu_float_array(out, "radius_edge", m, [&](std::size_t i) { return quality[i].radius_edge; });
+      // The weighted view beside it: the orthoradius-edge ratio with the
+      // point data's weights (the paper's rho for a pumped mesh).
+      if (!mesh.weights.empty()) {
+        const std::vector<TetQuality> weighted = mesh_quality(mesh, {}, true);
+        vtu_float_array(out, "orthoradius_edge", m, [&](std::size_t i) { return weighted[i].radius_edge; });
+      }
       // Circumradius over inradius, 3 for a regular tet: not VTK's normalised
       // "aspect_ratio" or "radius_ratio" (1 for a regular tet), hence the name.
       vtu_float_array(out, "radius_ratio_R_over_r", m,

@@ -249,8 +249,8 @@ double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, c
   return smallest;
 }
 
-std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going) {
-  const bool weighted = !mesh.weights.empty();
+std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going, bool use_weights) {
+  const bool weighted = use_weights && !mesh.weights.empty();
   if (weighted && mesh.weights.size() != mesh.vertices.size())
     throw std::invalid_argument("mesh_quality: " + std::to_string(mesh.weights.size()) +
                                 " weights for " + std::to_string(mesh.vertices.size()) +
@@ -300,17 +300,13 @@ MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality
     if (q.radius_edge > s.max_radius_edge) s.max_radius_edge = q.radius_edge;
     if (q.aspect_ratio > s.max_aspect_ratio) s.max_aspect_ratio = q.aspect_ratio;
 
-    // Table 2, R/l: [0.6, 1.4], (1.4, 2.2], > 2.2 (NaN, never produced by
-    // tet_quality, would count as > 2.2).
+    // Table 2, R/l (NaN, never produced by tet_quality, would count as > 2.2).
     const double rho = q.radius_edge;
-    if (rho < 0.6)
+    const int bin = radius_edge_bin(rho);
+    if (bin < 0)
       ++s.radius_edge_below;
-    else if (rho <= 1.4)
-      ++s.radius_edge_bins[0];
-    else if (rho <= 2.2)
-      ++s.radius_edge_bins[1];
     else
-      ++s.radius_edge_bins[2];
+      ++s.radius_edge_bins[bin];
 
     // Table 2, smallest dihedral angle: [0, 3), [3, 5), [5, 10) degrees.
     const double md = q.min_dihedral_deg;
@@ -330,6 +326,13 @@ MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality
                                              s.min_face_angle_histogram.size())]++;
   }
   return s;
+}
+
+int radius_edge_bin(double rho) {
+  if (rho < 0.6) return -1;
+  if (rho <= 1.4) return 0;
+  if (rho <= 2.2) return 1;
+  return 2;
 }
 
 std::size_t histogram_bin(double angle_deg, std::size_t bins) {

@@ -1,7 +1,7 @@
 // wqmesh: the native command line.
 //   wqmesh check IN [--compact] [--box-margin M]
 //   wqmesh mesh IN -o OUT.(mesh|vtu|ele) [--stats OUT.json] [options]
-//   wqmesh measure MESH.(mesh|ele) [--input IN] [--json]
+//   wqmesh measure MESH.(mesh|ele) [--input IN] [--stats STATS.json] [--json]
 // See kUsage for the options and the exit codes.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <cerrno>
@@ -59,17 +59,21 @@ constexpr const char* kUsage =
     "      watchdog (stopped \"stalled\"; the mesh is written only if it conforms\n"
     "      to the input). --measure-floor also times a plain\n"
     "      Delaunay triangulation of the final vertex set (ratio_to_delaunay).\n"
-    "  measure MESH [--input IN] [--json]\n"
+    "  measure MESH [--input IN] [--stats STATS.json] [--json]\n"
     "      Measure a tetrahedral mesh made by any mesher with wqmesh's quality\n"
     "      module. MESH is Medit (.mesh) or TetGen (.ele or .node, the other file\n"
     "      beside it). Prints the vertices used by tets, the tets, the smallest\n"
     "      dihedral angle, the tets whose smallest dihedral angle is below 3, 5\n"
     "      and 10 degrees, the tets with R/l above 2.2 (unweighted) and, with\n"
     "      --input, the relative volume error against the polyhedron IN. The tets\n"
-    "      are first oriented by majority (meshers differ in convention). --json\n"
+    "      are first oriented by majority (meshers differ in convention). --stats:\n"
+    "      the statistics `wqmesh mesh --stats` wrote for MESH; their protecting\n"
+    "      balls and thresholds (rho0, theta_deg) classify the tets again (skinny,\n"
+    "      slivers, near a small angle, violations; README, Every output tet has a\n"
+    "      class) and the counts are compared with the statistics' own. --json\n"
     "      prints one JSON object on one line.\n"
-    "      Exit code 0: measured; 2: unreadable mesh or invalid IN (message on\n"
-    "      stderr); 1: usage or internal error.\n"
+    "      Exit code 0: measured; 2: unreadable mesh, invalid IN or unreadable\n"
+    "      STATS (message on stderr); 1: usage or internal error.\n"
     "  --help, --version\n";
 
 int usage_error(const std::string& message) {
@@ -232,8 +236,59 @@ int run_mesh(const std::vector<std::string>& args) {
 
 // Measures a mesh written by any mesher (Medit or TetGen files) with the
 // quality module, so that every tool is judged by the same code.
+/// What `measure --stats` reads from a statistics file of `wqmesh mesh`.
+struct StatsFile {
+  std::vector<wqmesh::ProtectingBall> balls;
+  double rho0 = 0, theta_deg = 0;
+  std::size_t counts[4] = {0, 0, 0, 0};  ///< skinny, slivers, near_small_angle, violations
+};
+constexpr const char* kClassKeys[4] = {"skinny", "slivers", "near_small_angle", "violations"};
+
+/// Reads STATS; throws InputError naming the file and the key that is missing.
+StatsFile read_stats_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw wqmesh::InputError(wqmesh::InputErrorKind::io, path + ": cannot be read");
+  std::ostringstream text;
+  text << in.rdbuf();
+  wqmesh::JsonValue v;
+  try {
+    v = wqmesh::parse_json(text.str());
+  } catch (const wqmesh::InputError& e) {
+    throw wqmesh::InputError(e.kind(), path + ": " + e.what());
+  }
+  using Kind = wqmesh::JsonValue::Kind;
+  const auto missing = [&](const std::string& key) {
+    return wqmesh::InputError(wqmesh::InputErrorKind::syntax,
+                              path + ": not the statistics of `wqmesh mesh`: no valid \"" + key + "\"");
+  };
+  const auto number = [&](const wqmesh::JsonValue* o, const std::string& key) {
+    const wqmesh::JsonValue* x = o == nullptr ? nullptr : o->find(key);
+    if (x == nullptr || x->kind != Kind::number) throw missing(key);
+    return x->number;
+  };
+  StatsFile s;
+  const wqmesh::JsonValue* options = v.find("options");
+  s.rho0 = number(options, "rho0");
+  s.theta_deg = number(options, "theta_deg");
+  for (int k = 0; k < 4; ++k) s.counts[k] = static_cast<std::size_t>(number(&v, kClassKeys[k]));
+  const wqmesh::JsonValue* balls = v.find("protecting_balls");
+  if (balls == nullptr || balls->kind != Kind::array) throw missing("protecting_balls");
+  for (const wqmesh::JsonValue& b : balls->array) {
+    const wqmesh::JsonValue* c = b.find("center");
+    if (c == nullptr || c->kind != Kind::array || c->array.size() != 3) throw missing("protecting_balls[].center");
+    wqmesh::ProtectingBall ball;
+    for (int k = 0; k < 3; ++k) {
+      if (c->array[k].kind != Kind::number) throw missing("protecting_balls[].center");
+      ball.center[k] = c->array[k].number;
+    }
+    ball.radius = number(&b, "radius");
+    s.balls.push_back(ball);
+  }
+  return s;
+}
+
 int run_measure(const std::vector<std::string>& args) {
-  std::string path, input;
+  std::string path, input, stats_path;
   bool json = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
@@ -241,6 +296,10 @@ int run_measure(const std::vector<std::string>& args) {
       if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1][0] == '-')
         return usage_error("--input needs the polyhedron file (OFF or STL) the mesh was made from");
       input = args[++i];
+    } else if (a == "--stats") {
+      if (i + 1 >= args.size() || args[i + 1].empty() || args[i + 1][0] == '-')
+        return usage_error("--stats needs the statistics file `wqmesh mesh --stats` wrote for the mesh");
+      stats_path = args[++i];
     } else if (a == "--json") {
       json = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -268,6 +327,22 @@ int run_measure(const std::vector<std::string>& args) {
       return 2;
     }
     volume_input = wqmesh::plc_volume(in.plc());
+  }
+  StatsFile stats_file;
+  wqmesh::MeshClasses classes;
+  bool classes_match = true;
+  if (!stats_path.empty()) {
+    try {
+      stats_file = read_stats_file(stats_path);
+      // The classes of the mesh as read (before any reorientation: they do
+      // not depend on the vertex order), by the mesher's own definition.
+      classes = wqmesh::classify_mesh(mesh, stats_file.balls, stats_file.rho0, stats_file.theta_deg);
+    } catch (const wqmesh::InputError& e) {
+      std::cerr << "wqmesh: " << wqmesh::to_string(e.kind()) << ": " << e.what() << "\n";
+      return 2;
+    }
+    const std::size_t mine[4] = {classes.skinny, classes.slivers, classes.near_small_angle, classes.violations};
+    for (int k = 0; k < 4; ++k) classes_match = classes_match && mine[k] == stats_file.counts[k];
   }
   const bool flipped = wqmesh::orient_tets_by_majority(mesh);
   const wqmesh::MeshStats s = wqmesh::mesh_stats(mesh, wqmesh::mesh_quality(mesh));
@@ -303,6 +378,15 @@ int run_measure(const std::vector<std::string>& args) {
     j.null();
   else
     j.value(error);
+  if (!stats_path.empty()) {
+    j.field("stats", stats_path);
+    j.key("classes").begin_object();
+    j.field("skinny", classes.skinny).field("slivers", classes.slivers);
+    j.field("near_small_angle", classes.near_small_angle).field("violations", classes.violations);
+    j.field("near_small_angle_share", mesh.tets.empty() ? 0.0 : double(classes.near_small_angle) / mesh.tets.size());
+    j.end_object();
+    j.field("classes_match_stats", classes_match);
+  }
   j.end_object();
   if (json) {
     std::cout << j.str() << "\n";
@@ -320,6 +404,11 @@ int run_measure(const std::vector<std::string>& args) {
   if (!std::isnan(error))
     std::cout << "input volume           " << volume_input << "\n"
               << "relative volume error  " << error << "\n";
+  if (!stats_path.empty())
+    std::cout << "skinny / slivers       " << classes.skinny << " / " << classes.slivers << "\n"
+              << "near a small angle     " << classes.near_small_angle << "\n"
+              << "violations             " << classes.violations << "\n"
+              << "classes as in stats    " << (classes_match ? "yes" : "no") << "\n";
   return 0;
 }
 

@@ -280,7 +280,8 @@ std::vector<double> numbers(const Xml* x) {
 TEST(Output, VtuIsWellFormedAndRoundTrips) {
   TetMesh m = two_tets();
   m.weights = {0.0, 0.25, 1.0 / 3.0, 0.1, 2.0};
-  const std::vector<TetQuality> q = mesh_quality(m);
+  const std::vector<TetQuality> q = mesh_quality(m, {}, false);  // unweighted, as the writers pass it
+  const std::vector<TetQuality> weighted = mesh_quality(m);
   TetLabels labels;
   labels.tet_class = {0, 3};
   std::ostringstream out;
@@ -320,16 +321,19 @@ TEST(Output, VtuIsWellFormedAndRoundTrips) {
   ASSERT_NE(cd, nullptr);
   const std::vector<double> md = numbers(cd->array("min_dihedral"));
   const std::vector<double> re = numbers(cd->array("radius_edge"));
+  const std::vector<double> ore = numbers(cd->array("orthoradius_edge"));
   const std::vector<double> ar = numbers(cd->array("radius_ratio_R_over_r"));
   const std::vector<double> vol = numbers(cd->array("volume"));
   const std::vector<double> cls = numbers(cd->array("class"));
   ASSERT_EQ(md.size(), 2u);
   ASSERT_EQ(re.size(), 2u);
+  ASSERT_EQ(ore.size(), 2u);
   ASSERT_EQ(ar.size(), 2u);
   ASSERT_EQ(vol.size(), 2u);
   for (int t = 0; t < 2; ++t) {
     EXPECT_EQ(md[t], q[t].min_dihedral_deg);
-    EXPECT_EQ(re[t], q[t].radius_edge);  // weighted: the orthoradius-edge ratio
+    EXPECT_EQ(re[t], q[t].radius_edge);            // unweighted R/l
+    EXPECT_EQ(ore[t], weighted[t].radius_edge);    // with the weights: the orthoradius-edge ratio
     EXPECT_EQ(ar[t], q[t].aspect_ratio);
     EXPECT_EQ(vol[t], q[t].volume);
     EXPECT_GT(vol[t], 0);

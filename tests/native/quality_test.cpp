@@ -580,5 +580,35 @@ TEST(TetQuality, SubnormalTetsAreMeasuredLikeTheirScaledCopies) {
   EXPECT_EQ(st.inverted, 1u);  // the second, by its exact sign
 }
 
+TEST(Quality, MeshQualityUsesTheWeightsOnlyWhenAskedTo) {
+  TetMesh m;
+  m.vertices = {{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}};
+  m.tets = {{{0, 1, 2, 3}}};
+  m.weights = {0.2, 0, 0, 0};
+  const TetQuality plain = tet_quality(m.vertices[0], m.vertices[1], m.vertices[2], m.vertices[3]);
+  const std::array<double, 4> w{{0.2, 0, 0, 0}};
+  const TetQuality weighted = tet_quality(m.vertices[0], m.vertices[1], m.vertices[2], m.vertices[3], &w);
+  ASSERT_NE(plain.radius, weighted.radius);
+  EXPECT_EQ(mesh_quality(m)[0].radius, weighted.radius);
+  EXPECT_EQ(mesh_quality(m, {}, true)[0].radius_edge, weighted.radius_edge);
+  EXPECT_EQ(mesh_quality(m, {}, false)[0].radius, plain.radius);
+  EXPECT_EQ(mesh_quality(m, {}, false)[0].radius_edge, plain.radius_edge);
+  // Unweighted, mismatched weights are not looked at.
+  m.weights = {1};
+  EXPECT_THROW(mesh_quality(m), std::invalid_argument);
+  EXPECT_NO_THROW(mesh_quality(m, {}, false));
+}
+
+TEST(Quality, RadiusEdgeBinIsTable2s) {
+  EXPECT_EQ(radius_edge_bin(0.59), -1);
+  EXPECT_EQ(radius_edge_bin(0.6), 0);
+  EXPECT_EQ(radius_edge_bin(1.4), 0);
+  EXPECT_EQ(radius_edge_bin(std::nextafter(1.4, 2.0)), 1);
+  EXPECT_EQ(radius_edge_bin(2.2), 1);
+  EXPECT_EQ(radius_edge_bin(std::nextafter(2.2, 3.0)), 2);
+  EXPECT_EQ(radius_edge_bin(kInf), 2);
+  EXPECT_EQ(radius_edge_bin(std::nan("")), 2);
+}
+
 }  // namespace
 }  // namespace wqmesh

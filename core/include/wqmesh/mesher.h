@@ -89,12 +89,29 @@ struct ProtectingBall {
   bool vertex_ball = false;
 };
 
-/// The class of an output tet. skinny: R/l above rho0; sliver: R/l at most rho0
-/// and a dihedral angle below theta; near a small input angle: the circumcenter
-/// lies on or inside a protecting ball (rule 6 refuses it) or a vertex v,
-/// weighted with N(v)^2/9, encroaches the two-times expansion of a protecting
-/// ball (c, r): |v - c|^2 <= (2r)^2 + N(v)^2/9 (rule 7 and PUMP skip it).
+/// The class of an output tet, on the mesh as written (unweighted; the
+/// definition and where it goes beyond the paper: core/src/mesher/classify.h).
+/// skinny: R/l above rho0; sliver: R/l at most rho0 and a dihedral angle below
+/// theta; near a small input angle: the circumcenter lies on or inside a
+/// protecting ball (rule 6 refuses it) or a vertex v, weighted with L_v^2/9
+/// (L_v its shortest edge in the mesh), encroaches the two-times expansion of
+/// a protecting ball (c, r): |v - c|^2 <= (2r)^2 + L_v^2/9 (rule 7 and PUMP
+/// skip it).
 enum class TetClass { good = 0, skinny_near = 1, sliver_near = 2, violation = 3 };
+
+/// The classes of the tets of a mesh and their counts (classify_mesh).
+struct MeshClasses {
+  std::vector<TetClass> tet_class;  ///< per tet
+  std::size_t skinny = 0, slivers = 0, near_small_angle = 0, violations = 0;
+};
+
+/// The classes of every tet of `mesh` (its vertices as they are: weights are
+/// not used) from the protecting balls and the thresholds rho0, theta_deg,
+/// by the definition of TetClass: the same code as the mesher's, for a mesh
+/// read back from a file with the balls of its statistics (`wqmesh measure
+/// --stats`). Throws std::out_of_range on a bad vertex index.
+MeshClasses classify_mesh(const TetMesh& mesh, const std::vector<ProtectingBall>& balls, double rho0,
+                          double theta_deg);
 
 struct PhaseStats {
   std::string name;
@@ -112,6 +129,7 @@ struct ImproveStats {
   std::size_t flips23 = 0, flips32 = 0, flips44 = 0, flips22 = 0, edge_removals = 0, smoothed = 0, inserted = 0;
   double min_dihedral_before = 0, min_dihedral_after = 0;
   std::size_t slivers_before = 0, skinny_before = 0, near_small_angle_before = 0, violations_before = 0;
+  std::size_t tets_before = 0;  ///< the tets of the mesh before it
   /// Operations accepted in all (a mesh with none is the input mesh as it was).
   std::size_t changes() const { return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted; }
 };
@@ -120,8 +138,14 @@ struct MeshResult {
   /// The interior tets (weighted: mesh.weights), their boundary triangles with
   /// the input facet of each.
   TetMesh mesh;
-  std::vector<TetQuality> quality;  ///< per tet, with the weights
-  std::vector<TetClass> tet_class;  ///< per tet
+  /// Per tet, unweighted (the geometry of mesh.vertices; what the classes
+  /// and the statistics use).
+  std::vector<TetQuality> quality;
+  /// Per tet: the paper's orthoradius-edge ratio rho (section 3) with the
+  /// weights of mesh.weights, R/l where there are none. The weighted view,
+  /// apart from the classes.
+  std::vector<double> orthoradius_edge;
+  std::vector<TetClass> tet_class;  ///< per tet (unweighted, see TetClass)
   /// Per vertex of mesh: N(v), the nearest-neighbour distance at the end of
   /// REFINE (the weight bound is N(v)^2/9).
   std::vector<double> nearest_neighbour;
@@ -144,6 +168,9 @@ struct MeshResult {
   std::size_t points_inserted = 0;///< all, in the box too (box corners excluded)
   std::size_t slivers_before_pump = 0;  ///< interior slivers at the end of REFINE
   std::size_t slivers = 0, skinny = 0, near_small_angle = 0, violations = 0;
+  /// Tets whose orthoradius_edge is above rho0 (the paper's skinny for a
+  /// weighted mesh); no class depends on it.
+  std::size_t orthoradius_skinny = 0;
   std::size_t pumped_vertices = 0;
   /// Points inserted by each rule of CONFORM and REFINE: rule_points[i] for
   /// rule i (1..7); rule_points[0] counts those of INITIALIZE.

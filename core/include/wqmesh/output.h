@@ -29,15 +29,17 @@ struct TetLabels {
 void write_medit(std::ostream& out, const TetMesh& mesh);
 
 /// VTK XML UnstructuredGrid (.vtu, ASCII) with cell data: min_dihedral
-/// (degrees), radius_edge (R/l, the orthoradius once weighted),
-/// radius_ratio_R_over_r (circumradius over inradius, 3 for a regular tet;
-/// not VTK's normalised aspect ratio), volume, and "class" when labels are
-/// given; point data "weight" when the mesh is weighted (mesh.weights not
-/// empty). The command line and the wasm writer pass every array on every run
+/// (degrees), radius_edge (R/l, whatever `quality` holds: the command line
+/// and the wasm writer pass the unweighted one, mesh_quality(mesh, {}, false)),
+/// orthoradius_edge when the mesh is weighted (the paper's rho with the
+/// weights), radius_ratio_R_over_r (circumradius over inradius, 3 for a
+/// regular tet; not VTK's normalised aspect ratio), volume, and "class" when
+/// labels are given; point data "weight" when the mesh is weighted
+/// (mesh.weights not empty). The command line and the wasm writer pass every array on every run
 /// (weights of 0 where PUMP moved nothing), so that files of two runs hold the
 /// same arrays.
 /// Cells are VTK_TETRA (10) with the mesh's vertex order. `quality` is either
-/// empty (no quality arrays) or has one entry per tet (mesh_quality(mesh)); the
+/// empty (no quality arrays) or has one entry per tet (mesh_quality); the
 /// labels, if given, one per tet; otherwise std::invalid_argument. Float64
 /// values with round-trip precision; +-infinity (e.g. R/l of a flat tet) is
 /// written as +-DBL_MAX and NaN as 0, since VTK's ASCII reader rejects them.

@@ -100,13 +100,21 @@ struct MeshStats {
 /// so the clamp never applies to them.
 std::size_t histogram_bin(double angle_deg, std::size_t bins);
 
-/// Per-tet quality for every tet of `mesh` (weighted if mesh.weights is set).
-/// Throws std::invalid_argument if weights are set with a size other than the
-/// number of vertices, std::out_of_range on a bad vertex index.
+/// Per-tet quality for every tet of `mesh`: weighted if mesh.weights is set
+/// and `use_weights` (radius and radius_edge are then the orthoradius and the
+/// paper's orthoradius-edge ratio), else unweighted, the geometry of the
+/// vertices alone (what a solver sees; the classes, classify.h, use it).
+/// Throws std::invalid_argument if weights are used with a size other than
+/// the number of vertices, std::out_of_range on a bad vertex index.
 /// `keep_going`, when given, is called once per tet before its quality is
 /// computed; once it returns false the computation stops, and the result
 /// holds the qualities of the tets before that one only (a caller's cancel).
-std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going = {});
+std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going = {},
+                                     bool use_weights = true);
+
+/// Table 2's R/l bin of a ratio: -1 below 0.6, 0 for [0.6, 1.4], 1 for
+/// (1.4, 2.2], 2 above 2.2 (NaN too).
+int radius_edge_bin(double rho);
 
 /// Statistics over per-tet qualities (those of mesh_quality(mesh)). A tet
 /// counts as inverted by the exact sign of its volume (tet_orientation on

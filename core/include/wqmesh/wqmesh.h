@@ -15,7 +15,7 @@
 // bindings (wasm/bindings.cpp) as far as their memory accounting allows, and
 // examples/cpp shows it against the installed package. The lower-level
 // headers it includes (input.h, analysis.h, mesher.h, output.h, options.h,
-// names.h, mesh_reader.h, json.h) stay public for callers who need a single step.
+// names.h, mesh_reader.h, json.h, json_reader.h) stay public for callers who need a single step.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -30,6 +30,7 @@
 #include "wqmesh/error.h"
 #include "wqmesh/input.h"
 #include "wqmesh/json.h"
+#include "wqmesh/json_reader.h"
 #include "wqmesh/mesh_reader.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/names.h"
@@ -162,7 +163,8 @@ class Result {
   /// Every subsegment and subfacet is in the final triangulation (the mesh
   /// conforms to the PLC); the writers refuse a mesh that does not.
   bool conforming() const { return result_.conforming; }
-  /// The quality statistics of the mesh (quality.h), weights included.
+  /// The quality statistics of the mesh (quality.h), unweighted: the
+  /// geometry as written (the weighted view: raw().orthoradius_edge).
   MeshStats stats() const;
   /// Seconds from the bytes read to the mesh made (validation, analysis and
   /// meshing), the time_s of the statistics.

@@ -1,5 +1,38 @@
-// wqmesh: the classes of the output tets (paper, section 6 and Table 2):
-// skinny or sliver, near a small angle or a violation of the guarantees.
+// wqmesh: the classes of the output tets (paper, section 6 and Table 2),
+// computed on the mesh as written, so that anyone can recount them from the
+// written mesh and the protecting balls of the statistics.
+//
+// The definition. Every measure is unweighted: the geometry of the written
+// vertices, which is what a solver sees. For a tet t with circumradius R,
+// shortest edge l and smallest dihedral angle theta_min:
+//   skinny  R/l > rho0 (rule 6's rho0; 2.2 in Table 2);
+//   sliver  not skinny and theta_min < theta_deg (section 6: "R/l no more
+//           than 2.2, but a dihedral angle less than 3 degrees");
+//   near a small input angle: skinny or sliver, and
+//     (a) its circumcenter lies on or inside a protecting ball (c, r):
+//         |z - c| <= r (rule 6 refuses such a circumcenter, so REFINE leaves
+//         the tet), or
+//     (b) a vertex v of t, weighted with L_v^2/9, encroaches the two-times
+//         expansion of a protecting ball: |v - c|^2 <= (2r)^2 + L_v^2/9,
+//         L_v the length of the shortest edge at v in the written mesh (rule
+//         7 and PUMP ignore such a vertex, so a sliver at it is not pumped);
+//   violation: skinny or sliver and not near.
+// The protecting balls are those of section 4.3 (the vertex balls and the
+// doubled diametric balls of the sharp subsegments at the end of CONFORM),
+// listed in the statistics ("protecting_balls").
+//
+// Beyond the paper: the paper states its guarantee (Theorem 4.1) for the
+// orthoradius-edge ratio of the pumped, weighted mesh, and "near" as the
+// E-neighbourhood of the skinny tets at the end of REFINE or within O(f(x))
+// of a sharp edge, which cannot be measured on the output. Rules 6 and 7
+// give the measurable stand-ins (a) and (b) above; rule 7 takes L_v in the
+// triangulation of the whole vertex set V at the time, here it is the
+// written mesh's (the interior tets after PUMP, and after the improvement
+// phase when it runs), which is at least the nearest-neighbour distance N(v)
+// the extraction used before this (issue 14). The paper's weighted view,
+// the orthoradius-edge ratio with PUMP's weights, is kept apart
+// (MeshResult::orthoradius_edge, the "orthoradius_*" statistics); no class
+// depends on it.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -10,19 +43,15 @@
 
 namespace wqmesh::mesher {
 
-/// Fills r.quality (mesh_quality of r.mesh, with r.mesh.weights when set),
+/// Fills r.quality (unweighted: the geometry of r.mesh as written),
+/// r.orthoradius_edge (with r.mesh.weights; R/l when there are none),
 /// r.tet_class and the class counts of r (skinny, slivers, near_small_angle,
-/// violations) for every tet of r.mesh, from r.mesh, r.nearest_neighbour, the
-/// protecting balls and opt's thresholds (rho0, theta_deg) only. A tet is
-/// skinny when R/l > rho0, a sliver when not skinny and its smallest dihedral
-/// is below theta_deg; a skinny tet or sliver is near a small angle (see
-/// TetClass) when its circumcenter lies on or inside a protecting ball or one
-/// of its vertices v, weighted with N(v)^2/9, encroaches the two-times
-/// expansion of one; else it is a violation. The counts are reset first, so
-/// the function may be called again on a changed mesh. `keep_going`
-/// (optional) is polled once per tet for the quality and once per tet for
-/// the class; when it returns false the function returns false and r's
-/// classes are unusable.
+/// violations, orthoradius_skinny) for every tet of r.mesh, from r.mesh, the
+/// protecting balls and opt's thresholds (rho0, theta_deg) only, by the
+/// definition above. The counts are reset first, so it may be called again
+/// on a changed mesh. `keep_going` (optional) is polled once per tet for the
+/// measures and once per tet for the class; when it returns false the
+/// function returns false and r's classes are unusable.
 bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOptions& opt,
                    const std::function<bool()>& keep_going = {});
 

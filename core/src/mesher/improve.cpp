@@ -847,6 +847,7 @@ void Improver::finish() {
   s.skinny_before = keep.skinny_before;
   s.near_small_angle_before = keep.near_small_angle_before;
   s.violations_before = keep.violations_before;
+  s.tets_before = keep.tets_before;
 }
 
 namespace {
@@ -870,6 +871,7 @@ bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   s.skinny_before = r.skinny;
   s.near_small_angle_before = r.near_small_angle;
   s.violations_before = r.violations;
+  s.tets_before = r.mesh.tets.size();
   std::size_t calls = 0, tried = 0;
   const auto report = [&] {
     Progress p;
