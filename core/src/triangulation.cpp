@@ -63,15 +63,63 @@ struct RegularTriangulation::Impl {
   // at a) and stopping at the first cell that holds b; c, i, j as CGAL's
   // is_edge gives them. Same answer as Rt::is_edge, which first collects the
   // whole star of a. Needs dimension 3.
-  mutable std::vector<Rt::Cell_handle> walk;
+  mutable std::vector<Rt::Cell_handle> walk, walk_b;
+  //
+  // Beyond a one-sided walk (issue 15): the stars of a and b are walked in
+  // turn, one cell of each, so that an edge at a vertex of high degree (an
+  // input corner, a fan apex) costs the star of its other end. The cell
+  // found may differ from a one-sided walk's: callers that use it (edge_ring)
+  // circulate around the whole edge, so their answer does not depend on it.
   bool find_edge(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Cell_handle& c, int& i, int& j) const {
     if (rt.dimension() < 3) return rt.is_edge(a, b, c, i, j);
-    return walk_star(a, [&](Rt::Cell_handle x) {
-      if (!x->has_vertex(b, j)) return false;
-      c = x;
-      i = x->index(a);
-      return true;
-    });
+    // Each walk marks its cells in its own state of the cells' tds_data
+    // (processed around a, on_boundary around b); a cell holding both a and
+    // b ends both walks, and a walk that ends without one proves there is
+    // no edge ab. Bounded by the two stars.
+    walk.clear();
+    walk_b.clear();
+    walk.push_back(a->cell());
+    a->cell()->tds_data().mark_processed();
+    if (b->cell()->tds_data().is_clear()) {
+      walk_b.push_back(b->cell());
+      b->cell()->tds_data().mark_on_boundary();
+    }
+    bool found = false;
+    std::size_t na = 0, nb = 0;
+    auto step = [&](std::vector<Rt::Cell_handle>& w, std::size_t& n, Rt::Vertex_handle u, bool around_a) {
+      const Rt::Cell_handle x = w[n++];
+      if (x->has_vertex(around_a ? b : a)) {
+        c = x;
+        i = x->index(a);
+        j = x->index(b);
+        found = true;
+        return;
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (x->vertex(k) == u) continue;
+        const Rt::Cell_handle y = x->neighbor(k);
+        if (!y->tds_data().is_clear()) continue;
+        if (around_a)
+          y->tds_data().mark_processed();
+        else
+          y->tds_data().mark_on_boundary();
+        w.push_back(y);
+      }
+    };
+    // A cell marked by the other walk holds both ends only if it holds the
+    // walker's vertex too, which step() tests when that walk pops it; the
+    // cells each walk skips for the other's mark hold its own vertex and so
+    // are in the other's star, where that walk finds them.
+    while (!found && na < walk.size() && nb < walk_b.size()) {
+      step(walk, na, a, true);
+      if (!found) step(walk_b, nb, b, false);
+    }
+    // One walk ended: finish the other (the skipped cells, see above).
+    while (!found && na < walk.size()) step(walk, na, a, true);
+    while (!found && nb < walk_b.size()) step(walk_b, nb, b, false);
+    for (const Rt::Cell_handle& x : walk) x->tds_data().clear();
+    for (const Rt::Cell_handle& x : walk_b) x->tds_data().clear();
+    return found;
   }
   // Whether abc is a facet (as find_edge; c, i, j, k as CGAL's is_facet).
   bool find_facet(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Vertex_handle v, Rt::Cell_handle& c, int& i,

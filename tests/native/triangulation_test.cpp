@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 
@@ -71,6 +72,54 @@ TEST(Triangulation, RandomPointsAreDelaunayAndConflictsMatchTheEmptySphereTest) 
     if (power(q, z, power(a, z, 0)) < 0) ++expected;
   }
   EXPECT_EQ(finite_conflicts, expected);
+}
+
+TEST(Triangulation, EdgeTestsAgreeWithTheCellsAtAHighDegreeVertex) {
+  // is_edge and edge_ring walk the stars of both ends in turn (issue 15):
+  // their answers must be those of the cells themselves, also at a vertex
+  // of high degree (the centre of a sphere of points) and for non-edges.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  RegularTriangulation t;
+  t.insert({0, 0, 0});
+  for (int i = 0; i < 400; ++i) {
+    Point3 p{{g(rng), g(rng), g(rng)}};
+    const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    const double r = i % 4 ? 1.0 : 3.0;  // a sphere around vertex 0, and an outer shell
+    for (double& x : p) x *= r / n;
+    t.insert(p, 0, i);
+  }
+  const int n = t.number_of_vertices();
+  std::set<std::pair<int, int>> edges;
+  std::map<std::pair<int, int>, std::set<int>> rings;
+  std::vector<Tet> star;
+  for (int v = 0; v < n; ++v) {
+    t.incident_cells(v, star);
+    for (const Tet& c : star)
+      for (int a : c)
+        for (int b : c)
+          if (a == v && b != v && b != kInfinite) {
+            edges.insert({std::min(a, b), std::max(a, b)});
+            for (int x : c)
+              if (x != a && x != b) rings[{std::min(a, b), std::max(a, b)}].insert(x);
+          }
+  }
+  std::size_t degree0 = 0;
+  for (const auto& e : edges) degree0 += e.first == 0;
+  EXPECT_GT(degree0, 100u);  // vertex 0 is adjacent to much of the inner sphere
+  std::vector<int> ring;
+  int checked = 0;
+  for (int a = 0; a < n; a += 3)
+    for (int b = 0; b < n; b += 7) {
+      if (a == b) continue;
+      const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+      const bool is = edges.count(key) > 0;
+      EXPECT_EQ(t.is_edge(a, b), is) << a << "-" << b;
+      EXPECT_EQ(t.edge_ring(a, b, ring), is) << a << "-" << b;
+      if (is) EXPECT_EQ(std::set<int>(ring.begin(), ring.end()), rings[key]) << a << "-" << b;
+      ++checked;
+    }
+  EXPECT_GT(checked, 5000);
 }
 
 TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {

@@ -47,14 +47,20 @@ void Queues::enqueue_around(int v) {
     }
   // Subfacets: those with all vertices in the ring (new ones, and those the
   // vertex may encroach or remove from Del V).
-  std::unordered_set<Tri, TriHash> seen;
+  // `seen`: the triangles considered so far, sorted (a few dozen: a sorted
+  // vector costs less than a hash set's node per entry; issue 15).
+  std::vector<Tri> seen;
   std::vector<int> fs;
   std::vector<Tri> around;
   // The subfacets at v are new (in its facets' planar triangulations) and
   // may be missing from Del V whatever their vertices. The cheap tests come
   // first: lies_in_facet runs once per candidate.
   auto consider = [&](int f, const Tri& t) {
-    if (seen.insert(sorted(t)).second && sub_.lies_in_facet(f, t)) subfacets_.push_back({f, t});
+    const Tri s = sorted(t);
+    const auto at = std::lower_bound(seen.begin(), seen.end(), s);
+    if (at != seen.end() && *at == s) return;
+    seen.insert(at, s);
+    if (sub_.lies_in_facet(f, t)) subfacets_.push_back({f, t});
   };
   // A vertex of the ring may be the apex of a long fan in a facet (its far
   // edge split finely, as between nearly touching edges): walking its whole

@@ -207,16 +207,19 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   facet_out.clear();
   std::vector<Tet> cells;
   tri_.conflict_cells(c, 0, hint, cells);
+  // Only the edges and triangles with every vertex on P can be subsegments
+  // and subfacets (on_p): the others, most of a refined mesh's, are left out
+  // before the look-ups (issue 15; the same features are found).
   std::vector<std::uint64_t> edges;
   std::vector<Tri> tris;
   for (const Tet& t : cells) {
+    const bool on[4] = {on_p(t[0]), on_p(t[1]), on_p(t[2]), on_p(t[3])};
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        if (t[i] != kInfinite && t[j] != kInfinite) edges.push_back(edge_key(t[i], t[j]));
-    for (int k = 0; k < 4; ++k) {
-      Tri f{{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}};
-      if (std::find(f.begin(), f.end(), kInfinite) == f.end()) tris.push_back(sorted(f));
-    }
+        if (on[i] && on[j]) edges.push_back(edge_key(t[i], t[j]));
+    for (int k = 0; k < 4; ++k)
+      if (on[(k + 1) % 4] && on[(k + 2) % 4] && on[(k + 3) % 4])
+        tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
