@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# wqmesh: sets up, builds, then runs every test: the native GoogleTest tests
+# wqmesh: sets up, builds, then runs every test: the C++ format check, the native GoogleTest tests
 # (ctest), the Node tests (wasm module vs command line), the browser tests
 # (the package and the web page in headless Chromium), the GoogleTest tests
 # again under AddressSanitizer and UndefinedBehaviorSanitizer (build/asan,
@@ -15,6 +15,10 @@ bash scripts/setup.sh
 bash scripts/build.sh
 
 status=0
+# The C++ format (.clang-format, CONTRIBUTING.md): a file that differs fails
+# the run; `bash scripts/format.sh` formats them.
+echo "test: scripts/format.sh --check"
+bash scripts/format.sh --check || status=1
 echo "test: ctest --test-dir build/native --output-on-failure -j2"
 ctest --test-dir build/native --output-on-failure -j2 || status=1
 echo "test: node --test tests/node/"

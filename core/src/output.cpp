@@ -3,13 +3,13 @@
 // statistics of section 6 (Table 2) as JSON. See wqmesh/output.h.
 #include "wqmesh/output.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <algorithm>
 #include <limits>
 #include <map>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include "wqmesh/json.h"
 
@@ -29,8 +29,7 @@ int facet_of(const TetMesh& mesh, std::size_t i) {
 std::string vtk_double(double v) {
   if (std::isnan(v)) return "0";
   if (std::isinf(v))
-    return format_double(v > 0 ? std::numeric_limits<double>::max()
-                               : std::numeric_limits<double>::lowest());
+    return format_double(v > 0 ? std::numeric_limits<double>::max() : std::numeric_limits<double>::lowest());
   return format_double(v);
 }
 
@@ -69,14 +68,14 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
                const TetLabels* labels) {
   const std::size_t n = mesh.vertices.size(), m = mesh.tets.size();
   if (!quality.empty() && quality.size() != m)
-    throw std::invalid_argument("write_vtu: " + std::to_string(quality.size()) +
-                                " qualities for " + std::to_string(m) + " tets");
+    throw std::invalid_argument("write_vtu: " + std::to_string(quality.size()) + " qualities for " + std::to_string(m) +
+                                " tets");
   if (labels != nullptr && labels->tet_class.size() != m)
-    throw std::invalid_argument("write_vtu: " + std::to_string(labels->tet_class.size()) +
-                                " labels for " + std::to_string(m) + " tets");
+    throw std::invalid_argument("write_vtu: " + std::to_string(labels->tet_class.size()) + " labels for " +
+                                std::to_string(m) + " tets");
   if (!mesh.weights.empty() && mesh.weights.size() != n)
-    throw std::invalid_argument("write_vtu: " + std::to_string(mesh.weights.size()) +
-                                " weights for " + std::to_string(n) + " vertices");
+    throw std::invalid_argument("write_vtu: " + std::to_string(mesh.weights.size()) + " weights for " +
+                                std::to_string(n) + " vertices");
 
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -92,8 +91,7 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
   if (!quality.empty() || labels != nullptr) {
     out << "      <CellData>\n";
     if (!quality.empty()) {
-      vtu_float_array(out, "min_dihedral", m,
-                      [&](std::size_t i) { return quality[i].min_dihedral_deg; });
+      vtu_float_array(out, "min_dihedral", m, [&](std::size_t i) { return quality[i].min_dihedral_deg; });
       vtu_float_array(out, "radius_edge", m, [&](std::size_t i) { return quality[i].radius_edge; });
       // The weighted view beside it: the orthoradius-edge ratio with the
       // point data's weights (the paper's rho for a pumped mesh).
@@ -103,8 +101,7 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
       }
       // Circumradius over inradius, 3 for a regular tet: not VTK's normalised
       // "aspect_ratio" or "radius_ratio" (1 for a regular tet), hence the name.
-      vtu_float_array(out, "radius_ratio_R_over_r", m,
-                      [&](std::size_t i) { return quality[i].aspect_ratio; });
+      vtu_float_array(out, "radius_ratio_R_over_r", m, [&](std::size_t i) { return quality[i].aspect_ratio; });
       vtu_float_array(out, "volume", m, [&](std::size_t i) { return quality[i].volume; });
     }
     if (labels != nullptr) {
@@ -211,8 +208,7 @@ void write_tetgen_edges(std::ostream& edge, const TetMesh& mesh) {
     edge << i << ' ' << segments[i][0] << ' ' << segments[i][1] << " 1\n";
 }
 
-void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge,
-                  const TetMesh& mesh) {
+void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge, const TetMesh& mesh) {
   write_tetgen(node, ele, face, mesh);
   write_tetgen_edges(edge, mesh);
 }
@@ -233,7 +229,9 @@ void write_tetgen(const std::string& base, const TetMesh& mesh) {
 
 void write_quality_bins(JsonWriter& j, const MeshStats& s) {
   j.key("radius_edge_bins").begin_object();
-  j.field("0.6-1.4", s.radius_edge_bins[0]).field("1.4-2.2", s.radius_edge_bins[1]).field(">2.2", s.radius_edge_bins[2]);
+  j.field("0.6-1.4", s.radius_edge_bins[0])
+      .field("1.4-2.2", s.radius_edge_bins[1])
+      .field(">2.2", s.radius_edge_bins[2]);
   j.end_object();
   j.key("dihedral_bins").begin_object();
   j.field("0-3", s.dihedral_bins[0]).field("3-5", s.dihedral_bins[1]).field("5-10", s.dihedral_bins[2]);

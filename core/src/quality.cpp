@@ -44,8 +44,8 @@ double angle_deg(const Point3& u, const Point3& v) {
 ///   2 x . e_i = |e_i|^2 - W_i + W_0,   i = 1, 2, 3,
 /// solved by Cramer's rule with det = e_1 . (e_2 x e_3) (= 6 vol != 0). With all
 /// weights equal this is the circumcenter.
-Point3 orthocenter_offset(const Point3& e1, const Point3& e2, const Point3& e3, double det,
-                          double r1, double r2, double r3) {
+Point3 orthocenter_offset(const Point3& e1, const Point3& e2, const Point3& e3, double det, double r1, double r2,
+                          double r3) {
   const Point3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
   const double s = 1.0 / (2.0 * det);
   Point3 x;
@@ -189,8 +189,7 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
       // Weights are squared radii: scaled by 2^(-2k).
       std::array<double, 4> W;
       for (int i = 0; i < 4; ++i) W[i] = std::ldexp((*w)[i], -2 * k);
-      const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0],
-                                          r3 - W[3] + W[0]);
+      const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0], r3 - W[3] + W[0]);
       // Z^2 = |z - p_0|^2 - W_0, the weight of the orthosphere; may be < 0.
       const double z2 = dot(x, x) - W[0];
       radius = z2 > 0 ? std::sqrt(z2) : 0.0;
@@ -252,9 +251,8 @@ double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, c
 std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bool()>& keep_going, bool use_weights) {
   const bool weighted = use_weights && !mesh.weights.empty();
   if (weighted && mesh.weights.size() != mesh.vertices.size())
-    throw std::invalid_argument("mesh_quality: " + std::to_string(mesh.weights.size()) +
-                                " weights for " + std::to_string(mesh.vertices.size()) +
-                                " vertices");
+    throw std::invalid_argument("mesh_quality: " + std::to_string(mesh.weights.size()) + " weights for " +
+                                std::to_string(mesh.vertices.size()) + " vertices");
   const long n = static_cast<long>(mesh.vertices.size());
   std::vector<TetQuality> out;
   out.reserve(mesh.tets.size());
@@ -263,8 +261,7 @@ std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bo
     const std::array<int, 4>& tet = mesh.tets[t];
     for (int v : tet)
       if (v < 0 || v >= n)
-        throw std::out_of_range("mesh_quality: tet " + std::to_string(t) + " has vertex index " +
-                                std::to_string(v));
+        throw std::out_of_range("mesh_quality: tet " + std::to_string(t) + " has vertex index " + std::to_string(v));
     std::array<double, 4> w{};
     if (weighted)
       for (int k = 0; k < 4; ++k) w[k] = mesh.weights[tet[k]];
@@ -276,8 +273,8 @@ std::vector<TetQuality> mesh_quality(const TetMesh& mesh, const std::function<bo
 
 MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality) {
   if (quality.size() != mesh.tets.size())
-    throw std::invalid_argument("mesh_stats: " + std::to_string(quality.size()) +
-                                " qualities for " + std::to_string(mesh.tets.size()) + " tets");
+    throw std::invalid_argument("mesh_stats: " + std::to_string(quality.size()) + " qualities for " +
+                                std::to_string(mesh.tets.size()) + " tets");
   MeshStats s;
   s.vertices = mesh.vertices.size();
   s.tets = mesh.tets.size();
@@ -290,8 +287,7 @@ MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality
     // underflows in the input's units is not inverted either.
     if (!(q.normalized_volume > 1e-9)) {
       const auto& t = mesh.tets[&q - quality.data()];
-      if (tet_orientation(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]],
-                          mesh.vertices[t[3]]) <= 0)
+      if (tet_orientation(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]) <= 0)
         ++s.inverted;
     }
     if (q.min_dihedral_deg < s.min_dihedral_deg) s.min_dihedral_deg = q.min_dihedral_deg;
@@ -322,8 +318,7 @@ MeshStats mesh_stats(const TetMesh& mesh, const std::vector<TetQuality>& quality
 
     // Figure 3: distributions of the smallest dihedral and face angles.
     s.min_dihedral_histogram[histogram_bin(md, s.min_dihedral_histogram.size())]++;
-    s.min_face_angle_histogram[histogram_bin(q.min_face_angle_deg,
-                                             s.min_face_angle_histogram.size())]++;
+    s.min_face_angle_histogram[histogram_bin(q.min_face_angle_deg, s.min_face_angle_histogram.size())]++;
   }
   return s;
 }

@@ -28,10 +28,8 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Weighted Delaunay triangulation (paper, section 3). Vertex info = our id.
 // Hidden points are discarded: the weights of WQMESH (at most N(v)^2/9) never
 // hide a vertex, and a hidden insertion is reported to the caller.
-using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<int, K,
-                                                         CGAL::Regular_triangulation_vertex_base_3<K>>;
-using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>,
-                                                    CGAL::Discard_hidden_points>;
+using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
+using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
 using WPoint = K::Weighted_point_3;
@@ -122,8 +120,8 @@ struct RegularTriangulation::Impl {
     return found;
   }
   // Whether abc is a facet (as find_edge; c, i, j, k as CGAL's is_facet).
-  bool find_facet(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Vertex_handle v, Rt::Cell_handle& c, int& i,
-                  int& j, int& k) const {
+  bool find_facet(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Vertex_handle v, Rt::Cell_handle& c, int& i, int& j,
+                  int& k) const {
     if (rt.dimension() < 3) return rt.is_facet(a, b, v, c, i, j, k);
     return walk_star(a, [&](Rt::Cell_handle x) {
       if (!x->has_vertex(b, j) || !x->has_vertex(v, k)) return false;
@@ -239,9 +237,7 @@ bool RegularTriangulation::set_weight(int v, double w) {
 const Point3& RegularTriangulation::point(int v) const { return impl_->points.at(v); }
 double RegularTriangulation::weight(int v) const { return impl_->weights.at(v); }
 int RegularTriangulation::number_of_vertices() const { return static_cast<int>(impl_->handles.size()); }
-std::size_t RegularTriangulation::number_of_finite_cells() const {
-  return impl_->rt.number_of_finite_cells();
-}
+std::size_t RegularTriangulation::number_of_finite_cells() const { return impl_->rt.number_of_finite_cells(); }
 
 bool RegularTriangulation::is_edge(int a, int b) const {
   Rt::Cell_handle c;
@@ -267,8 +263,7 @@ bool RegularTriangulation::is_cell(const Tet& t) const {
 std::vector<Tet> RegularTriangulation::finite_cells() const {
   std::vector<Tet> out;
   out.reserve(impl_->rt.number_of_finite_cells());
-  for (auto c = impl_->rt.finite_cells_begin(); c != impl_->rt.finite_cells_end(); ++c)
-    out.push_back(impl_->tet_of(c));
+  for (auto c = impl_->rt.finite_cells_begin(); c != impl_->rt.finite_cells_end(); ++c) out.push_back(impl_->tet_of(c));
   return out;
 }
 
@@ -351,8 +346,7 @@ bool RegularTriangulation::facet_cells(int a, int b, int c, Tet& first, Tet& sec
   return true;
 }
 
-void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint,
-                                          std::vector<Tet>& out) const {
+void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out) const {
   out.clear();
   if (impl_->rt.dimension() < 3) return;
   const WPoint wp(BPoint(p[0], p[1], p[2]), w);
@@ -366,8 +360,7 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint,
 }
 
 int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
-  const Rt::Vertex_handle v =
-      impl_->rt.nearest_power_vertex(BPoint(p[0], p[1], p[2]), impl_->start_cell(hint));
+  const Rt::Vertex_handle v = impl_->rt.nearest_power_vertex(BPoint(p[0], p[1], p[2]), impl_->start_cell(hint));
   return v == Rt::Vertex_handle() || impl_->rt.is_infinite(v) ? -1 : v->info();
 }
 
@@ -628,8 +621,7 @@ bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
   do {
     if (++seen > cap) return false;
     if (seen > bound) impl_->exceeded("incident_triangles", id);
-    if (!impl_->dt.is_infinite(f))
-      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    if (!impl_->dt.is_infinite(f)) out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   } while (++f != done);
   return true;
 }
@@ -662,8 +654,7 @@ void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>
   // The edge's two faces: hit and its neighbour across the edge.
   const int i = 3 - hit->index(va) - hit->index(vb);
   for (const Dt2::Face_handle& g : {hit, hit->neighbor(i)})
-    if (!impl_->dt.is_infinite(g))
-      out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
+    if (!impl_->dt.is_infinite(g)) out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
 }
 
 std::size_t PlanarDelaunay::size() const { return impl_->dt.number_of_vertices(); }

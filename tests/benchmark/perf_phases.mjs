@@ -51,8 +51,9 @@ function short(sym) {
     .replace(/ \[clone [^\]]*\]/g, '').trim() || sym;
 }
 
-const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract'];
+const PHASES = ['initialize', 'conform', 'refine', 'pump', 'extract', 'improve'];
 const phaseOf = (name) => {
+  if (name === 'improve_phase') return 'improve';  // improve.cpp, after PUMP's extraction
   const m = /^Mesher::(initialize|conform|refine|pump|extract)$/.exec(name);
   return m ? m[1] : null;
 };
@@ -111,7 +112,7 @@ function report() {
   const n = samples.length;
   const pct = (k) => (100 * k / n).toFixed(1);
   const order = ['initialize', 'conform', 'refine', 'extract before PUMP', 'pump', 'extract (final)',
-    'reading and checking', 'writing', 'other'];
+    'improve', 'reading and checking', 'writing', 'other'];
   console.log(`${n} samples (${file})\n`);
   console.log('| phase | samples | % of the run |');
   console.log('|---|---:|---:|');

@@ -129,7 +129,7 @@ function assertSameNumbers(shown, stats, what) {
   }
 }
 
-const DEFAULTS = { rho: 2.2, sliverAngle: 3, pump: true, maxSize: 0, maxVertices: 1000000 };
+const DEFAULTS = { rho: 2.2, sliverAngle: 3, pump: true, improve: true, maxSize: 0, maxVertices: 1000000 };
 const model = (name) => readFileSync(join(root, 'examples/models', name));
 
 test('file input: spike.off meshes and shows the package\'s numbers', { skip }, async () => {

@@ -332,8 +332,8 @@ TEST(Output, VtuIsWellFormedAndRoundTrips) {
   ASSERT_EQ(vol.size(), 2u);
   for (int t = 0; t < 2; ++t) {
     EXPECT_EQ(md[t], q[t].min_dihedral_deg);
-    EXPECT_EQ(re[t], q[t].radius_edge);            // unweighted R/l
-    EXPECT_EQ(ore[t], weighted[t].radius_edge);    // with the weights: the orthoradius-edge ratio
+    EXPECT_EQ(re[t], q[t].radius_edge);          // unweighted R/l
+    EXPECT_EQ(ore[t], weighted[t].radius_edge);  // with the weights: the orthoradius-edge ratio
     EXPECT_EQ(ar[t], q[t].aspect_ratio);
     EXPECT_EQ(vol[t], q[t].volume);
     EXPECT_GT(vol[t], 0);

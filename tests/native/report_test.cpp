@@ -21,9 +21,11 @@ std::vector<double> numbers_of(const std::string& json, const std::string& key) 
   int depth = 0;
   for (; i < json.size(); ++i) {
     const char c = json[i];
-    if (c == '[') ++depth;
-    else if (c == ']') { if (--depth == 0) break; }
-    else if (c == '-' || c == '.' || (c >= '0' && c <= '9')) {
+    if (c == '[')
+      ++depth;
+    else if (c == ']') {
+      if (--depth == 0) break;
+    } else if (c == '-' || c == '.' || (c >= '0' && c <= '9')) {
       char* end = nullptr;
       out.push_back(std::strtod(json.c_str() + i, &end));
       i = static_cast<std::size_t>(end - json.c_str()) - 1;

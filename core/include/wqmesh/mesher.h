@@ -110,8 +110,7 @@ struct MeshClasses {
 /// by the definition of TetClass: the same code as the mesher's, for a mesh
 /// read back from a file with the balls of its statistics (`wqmesh measure
 /// --stats`). Throws std::out_of_range on a bad vertex index.
-MeshClasses classify_mesh(const TetMesh& mesh, const std::vector<ProtectingBall>& balls, double rho0,
-                          double theta_deg);
+MeshClasses classify_mesh(const TetMesh& mesh, const std::vector<ProtectingBall>& balls, double rho0, double theta_deg);
 
 struct PhaseStats {
   std::string name;
@@ -163,9 +162,9 @@ struct MeshResult {
   std::string stop_message;
   /// Every subsegment and subfacet is in the final triangulation.
   bool conforming = false;
-  std::size_t input_points = 0;   ///< PLC vertices
-  std::size_t sharp_elements = 0; ///< sharp vertices + sharp edges
-  std::size_t points_inserted = 0;///< all, in the box too (box corners excluded)
+  std::size_t input_points = 0;         ///< PLC vertices
+  std::size_t sharp_elements = 0;       ///< sharp vertices + sharp edges
+  std::size_t points_inserted = 0;      ///< all, in the box too (box corners excluded)
   std::size_t slivers_before_pump = 0;  ///< interior slivers at the end of REFINE
   std::size_t slivers = 0, skinny = 0, near_small_angle = 0, violations = 0;
   /// Tets whose orthoradius_edge is above rho0 (the paper's skinny for a
@@ -221,7 +220,7 @@ double plc_volume(const PLC& plc);
 /// near_small_angle, violations, volume_input, volume_mesh, protecting_balls,
 /// stopped, time_s, phases.
 /// `peak_memory_mb` (the caller's measure; negative: not written).
-std::string mesh_stats_json(const PLC& plc, const MeshResult& result, const MeshOptions& options,
-                            double time_s, double peak_memory_mb = -1, bool pretty = true);
+std::string mesh_stats_json(const PLC& plc, const MeshResult& result, const MeshOptions& options, double time_s,
+                            double peak_memory_mb = -1, bool pretty = true);
 
 }  // namespace wqmesh

@@ -53,8 +53,7 @@ void write_vtu(std::ostream& out, const TetMesh& mesh, const std::vector<TetQual
 /// .face `k 1` then `i a b c marker`; .edge `s 1` then `i a b 1`, the
 /// boundary_segments (TetGen's `-rNEFC` reads them to check the segments).
 void write_tetgen(const std::string& base, const TetMesh& mesh);
-void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge,
-                  const TetMesh& mesh);
+void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, std::ostream& edge, const TetMesh& mesh);
 /// The first three files only (no .edge).
 void write_tetgen(std::ostream& node, std::ostream& ele, std::ostream& face, const TetMesh& mesh);
 

@@ -17,11 +17,11 @@ namespace wqmesh {
 /// radius, radius_edge and aspect_ratio are then +infinity, inradius 0,
 /// dihedral angles 0 or 180, and an angle at a zero-length edge is 0.
 struct TetQuality {
-  double volume = 0;             ///< signed, > 0 when positively oriented
-  double radius = 0;             ///< circumradius, or orthoradius if weighted
-                                 ///< (sqrt of the orthosphere's weight; 0 if
-                                 ///< that weight is negative)
-  double shortest_edge = 0;      ///< l, the shortest edge length
+  double volume = 0;         ///< signed, > 0 when positively oriented
+  double radius = 0;         ///< circumradius, or orthoradius if weighted
+                             ///< (sqrt of the orthosphere's weight; 0 if
+                             ///< that weight is negative)
+  double shortest_edge = 0;  ///< l, the shortest edge length
   double longest_edge = 0;
   double radius_edge = 0;        ///< R/l (rho in section 3)
   double normalized_volume = 0;  ///< vol / l^3 (sigma in section 3), signed
@@ -72,7 +72,7 @@ double tet_volume(const Point3& a, const Point3& b, const Point3& c, const Point
 /// Statistics of a whole mesh.
 struct MeshStats {
   std::size_t vertices = 0, tets = 0;
-  double volume = 0;  ///< sum of signed tet volumes
+  double volume = 0;         ///< sum of signed tet volumes
   std::size_t inverted = 0;  ///< tets with volume <= 0 (exact sign, tet_orientation)
   double min_dihedral_deg = 180, max_dihedral_deg = 0;
   double min_face_angle_deg = 180;

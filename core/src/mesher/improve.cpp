@@ -263,6 +263,18 @@ bool Improver::violation(const Tet& T) const {
   return true;
 }
 
+double Improver::skinny_level(const Tet& T) const {
+  if (balls_ == nullptr) return rho_;
+  double rl, R;
+  radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
+  if (!(rl > rho_)) return rho_;
+  // Near a small angle whatever the edges become: its circumcenter in a
+  // protecting ball (classify.h's first test).
+  double r2;
+  if (balls_->contains(geometry::circumcenter(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], r2))) return rho_;
+  return rl;
+}
+
 bool Improver::admissible(const Tet& T, double size_cap) const {
   if (size_cap <= 0) return true;
   double rl, R;
@@ -282,7 +294,9 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   for (const Tet& T : fresh)
     if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
   int violations = 0;
+  double level = rho_;
   for (int t : old) {
+    level = std::max(level, skinny_level(tets_[t]));
     violations += violation(tets_[t]);
     if (max_size_ > 0) {
       const Tet& T = tets_[t];
@@ -292,7 +306,7 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
     }
   }
   for (const Tet& T : fresh) {
-    if (!admissible(T, size_cap)) return false;
+    if (!admissible(T, size_cap) || skinny_level(T) > level) return false;
     violations -= violation(T);
     if (violations < 0) return false;
   }
@@ -584,11 +598,13 @@ bool Improver::smooth(int v) {
   if (S.empty()) return false;
   double worst_old = HUGE_VAL, size_cap = max_size_, lmin = HUGE_VAL;
   int violations = 0;
+  double level = rho_;
   std::vector<Tet> tets;
   for (int t : S) {
     worst_old = std::min(worst_old, q_[t]);
     const Tet& T = tets_[t];
     tets.push_back(T);
+    level = std::max(level, skinny_level(T));
     violations += violation(T);
     if (max_size_ > 0) {
       double rl, R;
@@ -605,7 +621,8 @@ bool Improver::smooth(int v) {
   const auto valid = [&] {
     int left = violations;
     for (const Tet& T : tets)
-      if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) || (left -= violation(T)) < 0)
+      if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) || skinny_level(T) > level ||
+          (left -= violation(T)) < 0)
         return false;
     return true;
   };

@@ -138,6 +138,14 @@ class Improver {
   /// (TetClass: skinny by the unweighted or the weighted R/l, or a sliver,
   /// and not near a small angle); false without balls.
   bool violation(const Tet& T) const;
+  /// max(rho0, the unweighted R/l of T) in a run with protecting balls, rho0
+  /// if T's circumcenter lies in one (near a small angle for good) or there
+  /// are no balls (the hand-made tests). Beyond the paper: a change is kept
+  /// only if no new tet exceeds the level of the worst tet it replaces, so
+  /// the phase never makes a tet skinny (R/l > rho0) where none was; the
+  /// violation count alone cannot see this, as "near" (classify.h) depends on
+  /// the shortest edges at the vertices, which later changes move.
+  double skinny_level(const Tet& T) const;
   /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
   bool admissible(const Tet& T, double size_cap) const;
   bool poll();

@@ -132,8 +132,8 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     // walks the whole triangulation: about a second at 300,000 tets), so
     // that a cancel takes effect within a bounded amount of work.
     r.stopped = m.meter().stop_reason();
-    r.stop_message = "cancelled by the caller at " + std::to_string(m.vertices().size()) +
-                     " vertices; no mesh was extracted";
+    r.stop_message =
+        "cancelled by the caller at " + std::to_string(m.vertices().size()) + " vertices; no mesh was extracted";
     r.protecting_balls = m.balls().all();
   } else {
     const auto t0 = clock::now();
