@@ -246,7 +246,7 @@ TEST(Mesher, HopelessAngleStopsAtOnceNamingTheEdges) {
       "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n");
   const PointEstimate need = estimate_edge_points(in.plc, in.analysis);
   EXPECT_EQ(need.vertex, 0);
-  EXPECT_NEAR(need.degrees, 1e-7 * 180 / M_PI, 1e-12);
+  EXPECT_NEAR(need.degrees, 1e-7 * 180 / geometry::kPi, 1e-12);
   EXPECT_GT(need.points, 1e6);
   EXPECT_LT(need.points, 1e7);
   const MeshResult r = mesh_polyhedron(in.plc, in.analysis);

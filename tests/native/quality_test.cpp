@@ -10,12 +10,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geometry.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using geometry::kPi;
 const double kInf = std::numeric_limits<double>::infinity();
 
 double deg(double rad) { return rad * 180.0 / kPi; }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/quality.h"
 #include "wqmesh/report.h"
@@ -238,7 +239,7 @@ std::string star_prism_off(int tips) {
   std::string s = "OFF\n" + std::to_string(2 * m) + " " + std::to_string(m + 2) + " 0\n";
   for (double z : {0.0, 0.45})
     for (int k = 0; k < m; ++k) {
-      const double a = 3.14159265358979323846 * k / tips, r = k % 2 ? 0.4 : 1.0;
+      const double a = geometry::kPi * k / tips, r = k % 2 ? 0.4 : 1.0;
       s += num(r * std::cos(a)) + " " + num(r * std::sin(a)) + " " + num(z) + "\n";
     }
   s += std::to_string(m);

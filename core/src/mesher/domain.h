@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry.h"
 #include "plc_index.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/types.h"
@@ -48,7 +49,7 @@ struct Domain : PlcIndex {
   /// min(kSosAsymmetry, a^2/64), a the smallest input angle at the vertex in
   /// radians (beyond the paper; see domain.cpp).
   std::vector<double> sos_asymmetry;
-  static constexpr double kSosAsymmetry = 3.14159265358979323846 / 1000;
+  static constexpr double kSosAsymmetry = geometry::kPi / 1000;
   Box box;  ///< B
   Box input_box;
 
