@@ -160,7 +160,7 @@ class Improver {
   double rho_, max_size_;
   const ProtectingBalls* balls_ = nullptr;
   double theta_deg_ = 0, sin_theta_ = 0;
-  const std::function<bool()>& keep_going_;
+  std::function<bool()> keep_going_;  ///< a copy: callers pass temporaries
   std::vector<Point3>& P_;
   std::vector<Tet> tets_;
   /// nb_[t][k]: the tet across the face opposite vertex k, or -(1 + b) for
