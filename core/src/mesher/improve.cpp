@@ -250,7 +250,7 @@ bool Improver::violation(const Tet& T) const {
     skinny = z2 > rho_ * rho_ * l2;
   }
   bool sliver = false;
-  if (!skinny && min_sine(a, b, c, d) < sin_theta_) sliver = tet_quality(a, b, c, d).min_dihedral_deg < theta_deg_;
+  if (!skinny && min_sine(a, b, c, d) < sin_theta_) sliver = tet_min_dihedral_deg(a, b, c, d) < theta_deg_;
   if (!skinny && !sliver) return false;
   double r2;
   const Point3 zc = geometry::circumcenter(a, b, c, d, r2);
