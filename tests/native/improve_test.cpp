@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <set>
 
+#include "cgal_types.h"
 #include "mesh_invariants.h"
 #include "mesher/improve.h"
 #include "wqmesh/quality.h"
@@ -300,6 +301,122 @@ TEST(Improve, InsertionRemovesASliver) {
     EXPECT_FALSE(slot(T, 0) < 4 && slot(T, 1) < 4 && slot(T, 2) < 4 && slot(T, 3) < 4);
 }
 
+// ---- Boundary slides (improve_boundary.cpp) -------------------------------
+
+// n . (p - a), n = (b - a) x (c - a), in exact arithmetic: the residual of p
+// from the plane of abc (zero on it), to compare bit for bit.
+CGAL::MP_Float residual(const Point3& a, const Point3& b, const Point3& c, const Point3& p) {
+  using F = CGAL::MP_Float;
+  F u[3], v[3], w[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = F(b[i]) - F(a[i]);
+    v[i] = F(c[i]) - F(a[i]);
+    w[i] = F(p[i]) - F(a[i]);
+  }
+  return (u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1] + (u[0] * v[1] - u[1] * v[0]) * w[2];
+}
+
+// A square pyramid over the base z = 0 (facet 0, its corners input vertices;
+// the apex an input vertex too), the base cut into four triangles at the
+// Steiner vertex 5 off the centre.
+Config pyramid_with_input_corners(const Point3& v) {
+  Config p;
+  p.r.mesh.vertices = {{{-1, -1, 0}}, {{1, -1, 0}}, {{1, 1, 0}}, {{-1, 1, 0}}, {{0, 0, 1}}, v};
+  for (int i = 0; i < 4; ++i) p.add_tet(i, (i + 1) % 4, 5, 4);
+  std::map<std::set<int>, int> base;
+  for (int i = 0; i < 4; ++i) base[{i, (i + 1) % 4, 5}] = 0;
+  p.close(base);
+  for (int i = 0; i < 5; ++i) p.r.input_vertex[i] = i;
+  return p;
+}
+
+TEST(ImproveBoundary, AFacetVertexSlidesWithinAnAxisAlignedFacet) {
+  Config p = pyramid_with_input_corners({{0.6, 0.5, 0}});
+  const double before = p.worst(), volume = p.volume();
+  Improver im(p.r, 2.2, 0);
+  EXPECT_FALSE(im.movable(5));         // not free: on the boundary
+  EXPECT_EQ(im.slide_axes(5), 1 | 2);  // the base z = 0 runs along x and y
+  EXPECT_EQ(im.slide_axes(4), 0);      // input vertices never move
+  ASSERT_TRUE(im.smooth(5));
+  im.finish();
+  const Point3& v = p.r.mesh.vertices[5];
+  EXPECT_EQ(v[2], 0);  // on the facet's plane, exactly
+  EXPECT_LT(std::hypot(v[0], v[1]), std::hypot(0.6, 0.5)) << "towards the centre";
+  EXPECT_GT(p.worst(), before);
+  EXPECT_NEAR(p.volume(), volume, 1e-12);
+  expect_positive(p.r);
+  // The base triangles still cover the square (area 4), facing down.
+  double area = 0;
+  for (std::size_t i = 0; i < p.r.mesh.boundary.size(); ++i) {
+    if (p.r.mesh.boundary_facet[i] != 0) continue;
+    const auto& b = p.r.mesh.boundary[i];
+    const Point3 n = mesher::cross(mesher::sub(p.r.mesh.vertices[b[1]], p.r.mesh.vertices[b[0]]),
+                                   mesher::sub(p.r.mesh.vertices[b[2]], p.r.mesh.vertices[b[0]]));
+    EXPECT_LT(n[2], 0);
+    area += -0.5 * n[2];
+  }
+  EXPECT_DOUBLE_EQ(area, 4);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(p.r.mesh.vertices[i], pyramid_with_input_corners(v).r.mesh.vertices[i]);
+}
+
+TEST(ImproveBoundary, AVertexOfASlantedFacetWithoutAnAxisNeverMoves) {
+  // The base lies on x + 2y + 4z = 0, which runs along no coordinate axis:
+  // no move of one coordinate keeps a point on it.
+  Config p;
+  p.r.mesh.vertices = {{{4, 0, -1}}, {{0, 2, -1}}, {{-4, 0, 1}}, {{0, -2, 1}}, {{0.5, 1, 2}}, {{0.5, 0.25, -0.25}}};
+  for (int i = 0; i < 4; ++i) p.add_tet(i, (i + 1) % 4, 5, 4);
+  std::map<std::set<int>, int> base;
+  for (int i = 0; i < 4; ++i) base[{i, (i + 1) % 4, 5}] = 0;
+  p.close(base);
+  for (int i = 0; i < 5; ++i) p.r.input_vertex[i] = i;
+  const Point3 v = p.r.mesh.vertices[5];
+  Improver im(p.r, 2.2, 0);
+  EXPECT_EQ(im.slide_axes(5), 0);
+  EXPECT_FALSE(im.smooth(5));
+  ASSERT_TRUE(im.run());
+  im.finish();
+  EXPECT_EQ(p.r.mesh.vertices[5], v);
+  // Without input vertices a facet's plane is not known: nothing slides.
+  Config q = pyramid_with_input_corners({{0.6, 0.5, 0}});
+  q.r.input_vertex.assign(q.r.input_vertex.size(), -1);
+  Improver iq(q.r, 2.2, 0);
+  EXPECT_EQ(iq.slide_axes(5), 0);
+  EXPECT_FALSE(iq.smooth(5));
+}
+
+TEST(ImproveBoundary, AnEdgeVertexSlidesAlongItsAxisAlignedInputEdge) {
+  // The tet a b c d cut at s on its edge ab (the x axis) into two; ab is
+  // the input edge between the facets y = 0 (a b c) and z = 0 (a b d), so s
+  // slides along x only, between a and b.
+  Config c;
+  c.r.mesh.vertices = {{{0, 0, 0}}, {{2, 0, 0}}, {{1, 0, 1}}, {{1, 1, 0}}, {{1.6, 0, 0}}};
+  const int a = 0, b = 1, cc = 2, d = 3, s = 4;
+  c.add_tet(a, s, cc, d);
+  c.add_tet(s, b, cc, d);
+  c.close({{{a, s, cc}, 0}, {{s, b, cc}, 0}, {{a, s, d}, 1}, {{s, b, d}, 1}, {{a, cc, d}, 2}, {{b, cc, d}, 3}});
+  for (int i = 0; i < 4; ++i) c.r.input_vertex[i] = i;
+  const double before = c.worst(), volume = c.volume();
+  Improver im(c.r, 2.2, 0);
+  EXPECT_EQ(im.slide_axes(s), 1);
+  ASSERT_TRUE(im.smooth(s));
+  im.finish();
+  const Point3& v = c.r.mesh.vertices[s];
+  EXPECT_EQ(v[1], 0);
+  EXPECT_EQ(v[2], 0);
+  EXPECT_GT(v[0], 0);
+  EXPECT_LT(v[0], 1.6) << "towards the middle of ab, where the two tets are mirror images";
+  EXPECT_GT(c.worst(), before);
+  EXPECT_NEAR(c.volume(), volume, 1e-12);
+  expect_positive(c.r);
+  // The edge is still the chain a - s - b of mesh edges.
+  std::set<std::pair<int, int>> edges;
+  for (const auto& t : c.r.mesh.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) edges.insert({t[i], t[j]});
+  EXPECT_TRUE(edges.count({a, s}) && edges.count({s, b}));
+  EXPECT_FALSE(edges.count({a, b}));
+}
+
 // The worst min-sine over a mesh's tets.
 double worst(const TetMesh& m) {
   double w = HUGE_VAL;
@@ -337,17 +454,41 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
     // The phase starts from the mesh improve = false returns: the same
     // vertices first (Steiner points are appended), moved only if free.
     ASSERT_GE(r.mesh.vertices.size(), plain.mesh.vertices.size());
-    std::set<int> on_boundary;
-    for (const auto& b : plain.mesh.boundary) on_boundary.insert(b.begin(), b.end());
-    for (int v : on_boundary) EXPECT_EQ(r.mesh.vertices[v], plain.mesh.vertices[v]);
+    // Input vertices never move; a boundary vertex only slides, staying on
+    // each of its facets' planes exactly as before: n . (p - a) for the
+    // plane of three input vertices a, b, c of the facet, in exact
+    // arithmetic, is the same before and after.
+    for (std::size_t v = 0; v < in.plc.vertices.size(); ++v) EXPECT_EQ(r.mesh.vertices[v], plain.mesh.vertices[v]);
+    std::map<int, std::set<int>> facets_of;
+    for (std::size_t b = 0; b < plain.mesh.boundary.size(); ++b)
+      for (int v : plain.mesh.boundary[b]) facets_of[v].insert(plain.mesh.boundary_facet[b]);
+    std::size_t moved = 0;
+    for (const auto& [v, fs] : facets_of) {
+      if (r.mesh.vertices[v] == plain.mesh.vertices[v]) continue;
+      ++moved;
+      for (int f : fs) {
+        const auto& loop = in.plc.facets[f].loops[0];
+        const Point3& a = in.plc.vertices[loop[0]];
+        // Three corners of the facet not on a line.
+        std::size_t j = 1, k = 2;
+        for (; k < loop.size(); ++k)
+          if (!CGAL::collinear(cgal::to_cgal(a), cgal::to_cgal(in.plc.vertices[loop[j]]),
+                               cgal::to_cgal(in.plc.vertices[loop[k]])))
+            break;
+        ASSERT_LT(k, loop.size());
+        const Point3 &b = in.plc.vertices[loop[j]], &c = in.plc.vertices[loop[k]];
+        EXPECT_TRUE(residual(a, b, c, r.mesh.vertices[v]) == residual(a, b, c, plain.mesh.vertices[v]))
+            << "boundary vertex " << v << " left the plane of facet " << f;
+      }
+    }
     EXPECT_EQ(r.mesh.boundary.size(), plain.mesh.boundary.size());
     EXPECT_EQ(r.mesh.boundary_facet, plain.mesh.boundary_facet);
     std::printf(
         "[ improve  ] %s: min dihedral %.3g -> %.3g deg, tets %zu -> %zu; 2-3 %zu, 3-2 %zu, 4-4 %zu, "
-        "2-2 %zu, edge removals %zu, smoothed %zu, inserted %zu, passes %d\n",
+        "2-2 %zu, edge removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu, passes %d\n",
         fs::path(f).filename().c_str(), r.improve.min_dihedral_before, r.improve.min_dihedral_after,
         plain.mesh.tets.size(), r.mesh.tets.size(), r.improve.flips23, r.improve.flips32, r.improve.flips44,
-        r.improve.flips22, r.improve.edge_removals, r.improve.smoothed, r.improve.inserted, r.improve.passes);
+        r.improve.flips22, r.improve.edge_removals, r.improve.smoothed, moved, r.improve.inserted, r.improve.passes);
   }
 }
 

@@ -130,6 +130,7 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
     for (int k = 0; k < 4; ++k)
       if (nb_[t][k] == kOpen)
         for (int j = 0; j < 3; ++j) fixed_[tets_[t][kOutward[k][j]]] = 1;
+  init_slides();
 }
 
 void Improver::set_classes(const ProtectingBalls* balls, double theta_deg) {
@@ -542,7 +543,7 @@ bool Improver::flip22(int t, int i, int j) {
 }
 
 double Improver::ascend(int v, const std::vector<Tet>& tets, double current, double lmin,
-                        const std::function<bool()>& valid) {
+                        const std::function<bool()>& valid, int axes) {
   auto quality_at = [&](const Tet& T, const Point3& x) {
     Point3 p[4];
     for (int k = 0; k < 4; ++k) p[k] = T[k] == v ? x : P_[T[k]];
@@ -562,6 +563,8 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
       if (quality_at(T, P_[v]) > current + 1e-3) continue;
       Point3 g;
       for (int c = 0; c < 3; ++c) {
+        g[c] = 0;  // an exact 0: the coordinate stays (boundary slides)
+        if (!(axes >> c & 1)) continue;
         Point3 p = P_[v], m = P_[v];
         p[c] += h;
         m[c] -= h;
@@ -592,7 +595,8 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
 }
 
 bool Improver::smooth(int v) {
-  if (v < 0 || v >= int(fixed_.size()) || fixed_[v]) return false;
+  const int axes = movable_axes(v);
+  if (axes == 0) return false;
   std::vector<int> S;
   star(v, S);
   if (S.empty()) return false;
@@ -626,7 +630,7 @@ bool Improver::smooth(int v) {
         return false;
     return true;
   };
-  if (!(ascend(v, tets, worst_old, lmin, valid) > worst_old)) return false;
+  if (!(ascend(v, tets, worst_old, lmin, valid, axes) > worst_old)) return false;
   for (int t : S) {
     const Tet& T = tets_[t];
     q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
@@ -806,7 +810,7 @@ bool Improver::run() {
     std::vector<int> verts;
     for (int t : bad_tets(target))
       for (int v : tets_[t])
-        if (!fixed_[v]) verts.push_back(v);
+        if (movable_axes(v)) verts.push_back(v);
     std::sort(verts.begin(), verts.end());
     verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
     for (int v : verts) {

@@ -7,9 +7,10 @@
 // tets are the 3-2 and 4-4 flips), 2-2 flips of boundary triangles inside
 // one input facet, smoothing of interior Steiner vertices and insertion of
 // interior Steiner points. Unlike Stellar, the boundary is kept as it is
-// (only exactly coplanar 2-2 flips inside one facet change it), no vertex on
-// a boundary triangle moves, and every change must pass two guards beyond
-// the paper's rule (see Improver::accept).
+// (only exactly coplanar 2-2 flips inside one facet change it), a vertex on
+// a boundary triangle moves only along a coordinate axis that leaves it on
+// its facets exactly as before ("Boundary operations" below), and every
+// change must pass two guards beyond the paper's rule (see Improver::accept).
 //
 // Contract of every change: a set of tets is replaced by another set with the
 // same boundary faces; it is accepted only if the worst min-sine of the new
@@ -61,8 +62,8 @@ double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3&
 
 /// The improvement phase on an extracted mesh (r.mesh: vertices, tets,
 /// boundary triangles with their facets; r.nearest_neighbour, r.input_vertex,
-/// r.mesh.weights kept per vertex). The vertices of boundary triangles and
-/// the input vertices never move. New vertices get weight 0 (when r.mesh has
+/// r.mesh.weights kept per vertex). The input vertices never move; the
+/// vertices of boundary triangles only slide (slide_axes). New vertices get weight 0 (when r.mesh has
 /// weights), input_vertex -1 and nearest_neighbour = their shortest edge.
 /// Guards beyond the paper's rule (and Stellar's): with the protecting balls
 /// (set_classes), a change may not leave more violations (TetClass, with
@@ -97,7 +98,8 @@ class Improver {
   /// are exactly coplanar, and exactly two tets hold the edge.
   bool flip22(int t, int i, int j);
   /// Moves free vertex v (on no boundary triangle, no input vertex) to raise
-  /// the worst min-sine of its star; false if it did not move.
+  /// the worst min-sine of its star, or a boundary vertex along its
+  /// slide_axes(); false if it did not move.
   bool smooth(int v);
   /// Inserts an interior Steiner point in or near t (candidates: its
   /// circumcenter, its centroid, the apex of a regular tet on each of its
@@ -154,7 +156,9 @@ class Improver {
   /// steps along the sum of the unit gradients of the nearly worst ones, each
   /// the longest step of a halving line search (from lmin / 5) that raises the
   /// worst and passes valid(). Leaves P_[v] at the best point; returns its worst.
-  double ascend(int v, const std::vector<Tet>& tets, double current, double lmin, const std::function<bool()>& valid);
+  /// Only the coordinates of `axes` (bit i: axis i) change.
+  double ascend(int v, const std::vector<Tet>& tets, double current, double lmin, const std::function<bool()>& valid,
+                int axes = 7);
 
   MeshResult& r_;
   double rho_, max_size_;
@@ -182,6 +186,31 @@ class Improver {
   bool fresh_since(std::int64_t at, const Tet& T) const;
   ImproveStats st_;
   bool cancelled_ = false;
+
+  // ---- Boundary operations (improve_boundary.cpp; beyond the paper and
+  // beyond Stellar, which moves boundary vertices freely). Conformity stays
+  // exact: a Steiner vertex of the boundary (on boundary triangles, not an
+  // input vertex) moves only along a coordinate axis i that each of its
+  // facets runs along (the facet's input vertices, seen along axis i, lie on
+  // one line by CGAL's exact orientation, so the facet's plane equation has
+  // an exact 0 at coordinate i). Only coordinate i changes, so the vertex
+  // lies on each of its facets' planes, and on their common input edge, as
+  // exactly as before (the same residual, bit for bit); the star's tets
+  // staying positive keeps its boundary triangles unfolded in their facets.
+ public:
+  /// The axes (bit i: axis i) along which boundary vertex v may slide; 0 for
+  /// input vertices, free vertices, and vertices of a facet without such an
+  /// axis.
+  int slide_axes(int v) const;
+  /// The axes along which smooth() may move v: all three for a free vertex,
+  /// slide_axes(v) for one of the boundary.
+  int movable_axes(int v) const;
+
+ private:
+  /// Computes slide_ (from bnd_, the mesh's boundary_facet and the input
+  /// vertices); called by the constructor.
+  void init_slides();
+  std::vector<std::uint8_t> slide_;
 };
 
 /// The phase on a finished, conforming run's extracted mesh r: records the
