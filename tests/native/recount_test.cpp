@@ -24,6 +24,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry.h"
+#include "mesher/classify.h"
+#include "mesher/improve.h"
 #include "wqmesh/json_reader.h"
 #include "wqmesh/mesh_reader.h"
 #include "wqmesh/wqmesh.h"
@@ -374,6 +377,89 @@ TEST(Recount, ASkinnyTetIsNearWhenItsCircumcenterIsInABall) {
   // Weights are not looked at: the classes are those of the geometry.
   m.weights = {0.001, 0, 0, 0};
   EXPECT_EQ(classify_mesh(m, {beside}, 2.2, 3).tet_class[0], TetClass::violation);
+}
+
+// ---- TetClassifier (classify.h): one per-tet test for the statistics and
+// the improvement phase's guard ----
+
+/// shape() from the four points (with its cheap estimates) and shape() from
+/// tet_quality's measures, which classify_tets uses: equal on tet abcd.
+void expect_same_shape(const mesher::TetClassifier& c, const Point3& a, const Point3& b, const Point3& p,
+                       const Point3& d) {
+  const TetQuality q = tet_quality(a, b, p, d);
+  EXPECT_EQ(int(c.shape(a, b, p, d, mesher::min_sine(a, b, p, d))), int(c.shape(q.radius_edge, q.min_dihedral_deg)))
+      << "R/l " << q.radius_edge << ", min dihedral " << q.min_dihedral_deg;
+}
+
+TEST(Recount, TheClassifiersShapeFromPointsIsTetQualitysOnEveryTet) {
+  const mesher::ProtectingBalls none(Box{{{0, 0, 0}}, {{1, 1, 1}}});
+  const mesher::TetClassifier c(none, 2.2, 3);
+  std::size_t tets = 0;
+  for (const auto& f : models()) {
+    if (f.filename() == "part.off") continue;  // time
+    SCOPED_TRACE(f.string());
+    Options plain;
+    plain.set("improve", 0);  // the PUMP output has slivers and skinny tets
+    for (const Options& o : {Options(), plain}) {
+      const Result r = mesh(Polyhedron::read_file(f.string()), o);
+      const TetMesh& m = r.raw().mesh;
+      for (const auto& t : m.tets)
+        expect_same_shape(c, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+      tets += m.tets.size();
+    }
+  }
+  EXPECT_GT(tets, 0u);
+  // At the thresholds, where the estimates are within rounding: tets of
+  // random shapes whose last point is moved along a line until R/l is rho0,
+  // or the smallest dihedral angle theta, to the last bits (bisection), then
+  // a few ulps on either side.
+  const auto solve = [](auto measure, double lo, double hi, double target) {
+    for (int i = 0; i < 100 && lo != hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (measure(mid) > target ? lo : hi) = mid;
+    }
+    return lo;
+  };
+  std::set<int> shapes;
+  std::uint64_t seed = 12345;
+  const auto uniform = [&] {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(seed >> 11) / 9007199254740992.0;
+  };
+  for (int trial = 0; trial < 400; ++trial) {
+    const bool skinny_side = trial % 2 == 0;
+    const Point3 a{{uniform(), uniform(), uniform()}}, b{{uniform(), uniform(), uniform()}},
+        p{{uniform(), uniform(), uniform()}};
+    // d(s) = d0 plus s along abp's normal, positive for s > 0: d0 the
+    // centroid of abp (R/l falls from infinity as d rises), or for the angle
+    // the antipode of a on abp's circumcircle (four cocircular points: a
+    // sliver, whose smallest dihedral angle grows as d rises).
+    const Point3 n = geometry::cross(geometry::sub(b, a), geometry::sub(p, a));
+    double r2;
+    const Point3 cc = geometry::circumcenter(a, b, p, r2);
+    const Point3 d0 = skinny_side
+                          ? Point3{{(a[0] + b[0] + p[0]) / 3, (a[1] + b[1] + p[1]) / 3, (a[2] + b[2] + p[2]) / 3}}
+                          : geometry::sub(geometry::mul(cc, 2), a);
+    const auto d = [&](double s) { return geometry::add(d0, geometry::mul(n, s)); };
+    const auto measure = [&](double s) {
+      const TetQuality q = tet_quality(a, b, p, d(s));
+      return skinny_side ? q.radius_edge : -q.min_dihedral_deg;
+    };
+    const double target = skinny_side ? 2.2 : -3.0;
+    // From nearly flat (a sliver, R/l large) to about as high as abp is wide.
+    const double lo = 1e-9, hi = std::sqrt(geometry::dist2(a, b) / geometry::dot(n, n));
+    if (!(measure(lo) > target) || measure(hi) > target) continue;  // no crossing on this line
+    const double s0 = solve(measure, lo, hi, target);
+    for (double x = s0, y = s0, k = 0; k < 16; ++k, x = std::nextafter(x, 1.0), y = std::nextafter(y, 0.0))
+      for (double z : {x, y}) {
+        expect_same_shape(c, a, b, p, d(z));
+        shapes.insert(int(c.shape(a, b, p, d(z), mesher::min_sine(a, b, p, d(z)))));
+      }
+  }
+  // Both sides of both thresholds were met: good, skinny and sliver.
+  EXPECT_EQ(shapes.size(), 3u);
+  // Flat: four coplanar points (R/l infinite by tet_quality).
+  expect_same_shape(c, {{0, 0, 0}}, {{1, 0, 0}}, {{1, 1, 0}}, {{0, 1, 0}});
 }
 
 TEST(Recount, JsonReaderReadsWhatTheWriterWritesAndNamesTheDefect) {

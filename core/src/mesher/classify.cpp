@@ -3,6 +3,7 @@
 #include "mesher/classify.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "geometry.h"
@@ -14,39 +15,33 @@ using namespace geometry;
 
 namespace {
 
+/// The relative rounding bound of the double circumcenter and min-sine of a
+/// tet whose longest edge cubed is kappa times |6V| (with a safety factor
+/// of about 20 over the operations' count): kappa grows as the tet flattens.
+double rounding_bound(double kappa) { return 1e-12 + 2e-13 * kappa; }
+
 /// The classes of every tet of `mesh` from its unweighted `quality`, by the
 /// definition of classify.h; false when keep_going said stop.
 bool classify(const TetMesh& mesh, const std::vector<TetQuality>& quality, const ProtectingBalls& balls, double rho0,
               double theta_deg, const std::function<bool()>& keep_going, MeshClasses& out) {
   out = MeshClasses{};
-  // L_v: the shortest edge at v in the mesh.
-  std::vector<double> shortest(mesh.vertices.size(), std::numeric_limits<double>::infinity());
-  for (const auto& t : mesh.tets)
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const double l2 = dist2(mesh.vertices[t[i]], mesh.vertices[t[j]]);
-        shortest[t[i]] = std::min(shortest[t[i]], l2);
-        shortest[t[j]] = std::min(shortest[t[j]], l2);
-      }
+  const TetClassifier classifier(balls, rho0, theta_deg);
+  const std::vector<double> shortest = shortest_edges2(mesh);  // L_v^2
   out.tet_class.assign(mesh.tets.size(), TetClass::good);
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     if (keep_going && !keep_going()) return false;
     const TetQuality& q = quality[i];
-    const bool skinny = q.radius_edge > rho0;
-    const bool sliver = !skinny && q.min_dihedral_deg < theta_deg;
-    if (!skinny && !sliver) continue;
+    const TetClassifier::Shape shape = classifier.shape(q.radius_edge, q.min_dihedral_deg);
+    if (shape == TetClassifier::Shape::good) continue;
     const auto& t = mesh.tets[i];
-    double r2;
-    const Point3 z =
-        circumcenter(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], r2);
-    bool near = balls.contains(z);        // (a)
-    for (int k = 0; k < 4 && !near; ++k)  // (b): shortest[] holds L_v^2
-      near = balls.expansion_encroached(mesh.vertices[t[k]], shortest[t[k]] / 9);
-    out.tet_class[i] = !near ? TetClass::violation : skinny ? TetClass::skinny_near : TetClass::sliver_near;
-    out.slivers += sliver;
-    out.skinny += skinny;
-    out.near_small_angle += near;
-    out.violations += !near;
+    const TetClass c =
+        classifier.classify(shape, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]],
+                            {{shortest[t[0]], shortest[t[1]], shortest[t[2]], shortest[t[3]]}});
+    out.tet_class[i] = c;
+    out.slivers += shape == TetClassifier::Shape::sliver;
+    out.skinny += shape == TetClassifier::Shape::skinny;
+    out.near_small_angle += c != TetClass::violation;
+    out.violations += c == TetClass::violation;
   }
   return true;
 }
@@ -72,6 +67,60 @@ Box bounding_box(const TetMesh& mesh, const std::vector<ProtectingBall>& balls) 
 }
 
 }  // namespace
+
+TetClassifier::TetClassifier(const ProtectingBalls& balls, double rho0, double theta_deg)
+    : balls_(balls), rho0_(rho0), theta_deg_(theta_deg), sin_theta_(std::sin(theta_deg * kPi / 180)) {}
+
+TetClassifier::Shape TetClassifier::shape(double radius_edge, double min_dihedral_deg) const {
+  if (radius_edge > rho0_) return Shape::skinny;
+  return min_dihedral_deg < theta_deg_ ? Shape::sliver : Shape::good;
+}
+
+TetClassifier::Shape TetClassifier::shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                                          double min_sine) const {
+  // Estimates first (R^2 / l^2 from geometry::circumcenter, the min-sine),
+  // trusted when they are farther from their threshold than their rounding
+  // bound; tet_quality's own measures otherwise.
+  const double l2 = std::min({dist2(a, b), dist2(a, c), dist2(a, d), dist2(b, c), dist2(b, d), dist2(c, d)});
+  const double L2 = std::max({dist2(a, b), dist2(a, c), dist2(a, d), dist2(b, c), dist2(b, d), dist2(c, d)});
+  const double det = std::fabs(dot(sub(b, a), cross(sub(c, a), sub(d, a))));
+  const double kappa = det > 0 ? L2 * std::sqrt(L2) / det : HUGE_VAL;
+  const double m = rounding_bound(kappa);
+  bool skinny = false, decided = false;
+  if (std::isfinite(m) && l2 > 0) {
+    double r2;
+    circumcenter(a, b, c, d, r2);
+    const double level = rho0_ * rho0_ * l2;
+    if (std::isfinite(r2) && r2 > level * (1 + 4 * m)) skinny = decided = true;
+    if (std::isfinite(r2) && r2 < level * (1 - 4 * m)) decided = true;
+  }
+  if (!decided) skinny = tet_quality(a, b, c, d).radius_edge > rho0_;
+  if (skinny) return Shape::skinny;
+  if (std::isfinite(m) && min_sine > sin_theta_ * (1 + 1e-6 + m)) return Shape::good;
+  return tet_min_dihedral_deg(a, b, c, d) < theta_deg_ ? Shape::sliver : Shape::good;
+}
+
+bool TetClassifier::near(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                         const std::array<double, 4>& L2) const {
+  double r2;
+  if (balls_.contains(circumcenter(a, b, c, d, r2))) return true;  // (a)
+  const Point3* p[4] = {&a, &b, &c, &d};
+  for (int k = 0; k < 4; ++k)  // (b)
+    if (balls_.expansion_encroached(*p[k], L2[k] / 9)) return true;
+  return false;
+}
+
+std::vector<double> shortest_edges2(const TetMesh& mesh) {
+  std::vector<double> shortest(mesh.vertices.size(), std::numeric_limits<double>::infinity());
+  for (const auto& t : mesh.tets)
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const double l2 = dist2(mesh.vertices[t[i]], mesh.vertices[t[j]]);
+        shortest[t[i]] = std::min(shortest[t[i]], l2);
+        shortest[t[j]] = std::min(shortest[t[j]], l2);
+      }
+  return shortest;
+}
 
 bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOptions& opt,
                    const std::function<bool()>& keep_going) {

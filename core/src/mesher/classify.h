@@ -36,12 +36,57 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <array>
 #include <functional>
+#include <vector>
 
 #include "mesher/protecting_balls.h"
 #include "wqmesh/mesher.h"
 
 namespace wqmesh::mesher {
+
+/// The per-tet test of the definition above: the one code of classify_tets
+/// (and classify_mesh) and of the improvement phase's guard (improve.h), so
+/// that the guard predicts exactly the classes the statistics will count.
+class TetClassifier {
+ public:
+  /// A tet's class apart from "near": skinny (R/l > rho0), sliver (not
+  /// skinny, smallest dihedral angle < theta) or neither (good).
+  enum class Shape : unsigned char { good, skinny, sliver };
+
+  /// rho0 and theta_deg: rule 6's rho0 and section 6's sliver angle.
+  TetClassifier(const ProtectingBalls& balls, double rho0, double theta_deg);
+
+  /// The shape from tet_quality's unweighted radius_edge and
+  /// min_dihedral_deg.
+  Shape shape(double radius_edge, double min_dihedral_deg) const;
+  /// The shape of tet abcd, the same as shape() of tet_quality(a, b, c, d)'s
+  /// measures, bit for bit: tet_quality (or tet_min_dihedral_deg) is called
+  /// only where a cheaper estimate lies within its rounding bound of a
+  /// threshold. `min_sine`: the smallest sine of abcd's dihedral angles
+  /// (improve.h's min_sine), which spares the angles when it is clearly
+  /// above sin(theta).
+  Shape shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double min_sine) const;
+  /// Near a small input angle: (a) or (b) of the definition above; L2[k] is
+  /// L_v^2 of the k-th vertex (its squared shortest edge in the mesh).
+  bool near(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const std::array<double, 4>& L2) const;
+  /// The class of a tet of shape s: good, or near (skinny_near, sliver_near)
+  /// or a violation.
+  TetClass classify(Shape s, const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                    const std::array<double, 4>& L2) const {
+    if (s == Shape::good) return TetClass::good;
+    if (!near(a, b, c, d, L2)) return TetClass::violation;
+    return s == Shape::skinny ? TetClass::skinny_near : TetClass::sliver_near;
+  }
+
+ private:
+  const ProtectingBalls& balls_;
+  double rho0_, theta_deg_, sin_theta_;
+};
+
+/// L_v^2 for every vertex v of `mesh`: the squared length of its shortest
+/// edge in mesh.tets (+infinity for a vertex of no tet).
+std::vector<double> shortest_edges2(const TetMesh& mesh);
 
 /// Fills r.quality (unweighted: the geometry of r.mesh as written),
 /// r.orthoradius_edge (with r.mesh.weights; R/l when there are none),
