@@ -382,14 +382,16 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     if (!o.used) return false;
   // Commit.
   for (const auto& [b, tri] : boundary) bnd_[b] = tri;
+  // free_slots_ is a min-heap: a new tet takes the smallest free slot.
   for (int t : old) {
     tets_[t][0] = -1;
     free_slots_.push_back(t);
+    std::push_heap(free_slots_.begin(), free_slots_.end(), std::greater<int>());
   }
-  std::sort(free_slots_.begin(), free_slots_.end(), std::greater<int>());
   std::vector<int> id(fresh.size());
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     if (!free_slots_.empty()) {
+      std::pop_heap(free_slots_.begin(), free_slots_.end(), std::greater<int>());
       id[i] = free_slots_.back();
       free_slots_.pop_back();
     } else {

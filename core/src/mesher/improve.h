@@ -171,7 +171,7 @@ class Improver {
   /// boundary triangle b.
   std::vector<Tet> nb_;
   std::vector<double> q_;
-  std::vector<int> free_slots_;
+  std::vector<int> free_slots_;  ///< a min-heap (std::greater) of dead tets' slots
   std::vector<std::array<int, 3>> bnd_;
   std::vector<int> vtet_;
   std::vector<char> fixed_;
