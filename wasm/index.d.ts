@@ -458,6 +458,8 @@ export interface MeshStats {
     edge_removals: number;
     smoothed: number;
     inserted: number;
+    /** Steiner vertices removed by edge contraction. */
+    contractions: number;
     min_dihedral_before: number;
     min_dihedral_after: number;
     slivers_before: number;

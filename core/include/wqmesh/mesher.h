@@ -126,11 +126,14 @@ struct ImproveStats {
   bool ran = false;
   int passes = 0;
   std::size_t flips23 = 0, flips32 = 0, flips44 = 0, flips22 = 0, edge_removals = 0, smoothed = 0, inserted = 0;
+  std::size_t contractions = 0;  ///< vertices removed by edge contraction
   double min_dihedral_before = 0, min_dihedral_after = 0;
   std::size_t slivers_before = 0, skinny_before = 0, near_small_angle_before = 0, violations_before = 0;
   std::size_t tets_before = 0;  ///< the tets of the mesh before it
   /// Operations accepted in all (a mesh with none is the input mesh as it was).
-  std::size_t changes() const { return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted; }
+  std::size_t changes() const {
+    return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted + contractions;
+  }
 };
 
 struct MeshResult {

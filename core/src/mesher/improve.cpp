@@ -315,7 +315,7 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
 }
 
 bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
-                       const std::vector<std::pair<int, std::array<int, 3>>>& boundary) {
+                       const std::vector<std::pair<int, std::array<int, 3>>>& boundary, int vanishing) {
   // The outer faces of the old set, outward, with what lies beyond each.
   struct Outer {
     Tri key;
@@ -335,11 +335,16 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     }
   for (const auto& [b, tri] : boundary)
     for (Outer& o : outer)
-      if (o.beyond == -1 - b) o.key = rotated(tri);
-  // Every vertex of the old set stays in the new one.
+      if (o.beyond == -1 - b) {
+        if (tri[0] < 0)
+          o.used = true;  // deleted (a contraction): nothing new faces it
+        else
+          o.key = rotated(tri);
+      }
+  // Every vertex of the old set stays in the new one (but `vanishing`).
   for (int t : old)
     for (int v : tets_[t]) {
-      bool found = false;
+      bool found = v == vanishing;
       for (const Tet& T : fresh) found = found || T[0] == v || T[1] == v || T[2] == v || T[3] == v;
       if (!found) return false;
     }
@@ -808,6 +813,7 @@ bool Improver::run() {
   };
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::size_t changed = flips();
+    changed += contract_pass();
     // Smoothing: the free vertices of the bad tets.
     std::vector<int> verts;
     for (int t : bad_tets(target))
@@ -860,6 +866,7 @@ void Improver::finish() {
         if (u != v) l2 = std::min(l2, geometry::dist2(P_[u], P_[v]));
     r_.nearest_neighbour[v] = std::sqrt(l2);
   }
+  drop_removed();
   ImproveStats& s = r_.improve;
   const ImproveStats keep = s;
   s = st_;

@@ -54,6 +54,9 @@ constexpr double kMaxTetGrowth = 1.1;
 constexpr std::size_t kMinTetSlack = 8;
 /// An insertion cavity holds at most this many tets.
 constexpr int kMaxCavity = 48;
+/// Vertex removal (improve_contract.cpp) is tried on the vertices of the
+/// tets below sin(kContractBelowDeg).
+constexpr double kContractBelowDeg = 5;
 
 /// The smallest sine of the six dihedral angles of tet abcd (each sine is
 /// 6 V l_ij / (|n_k| |n_l|), n_k the area normal of the face opposite k);
@@ -127,10 +130,11 @@ class Improver {
   bool accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new) const;
   /// Replaces the tets `old` by `fresh` (faces matched to each other and to
   /// the old set's outer faces; `boundary` lists replacement boundary
-  /// triangles as (index, triangle)); false, and nothing changed, when the
-  /// faces do not match (every vertex of the old set must stay).
+  /// triangles as (index, triangle), a triangle {-1, -1, -1} deletes that
+  /// one); false, and nothing changed, when the faces do not match (every
+  /// vertex of the old set must stay but `vanishing`).
   bool replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
-               const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {});
+               const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {}, int vanishing = -1);
   bool has(int t, int v) const;
   int slot(int t, int v) const;
   /// The tets around v (its star), from vtet_; empty if v has none.
@@ -211,6 +215,51 @@ class Improver {
   /// vertices); called by the constructor.
   void init_slides();
   std::vector<std::uint8_t> slide_;
+
+  // ---- Vertex removal by edge contraction (improve_contract.cpp; beyond
+  // the paper, after Stellar's vertex removal by edge contraction). Edge
+  // (v, u) is contracted by replacing v with u in every tet of v's star and
+  // deleting the tets that hold both; no coordinate changes. v is a Steiner
+  // vertex (never an input vertex, never a point on the sphere of a vertex
+  // ball: see contract_targets) and u is compatible: v interior -> any
+  // neighbour; v on one input facet -> a neighbour along a boundary edge of
+  // that facet (on the facet or on its boundary); v on an input edge -> one
+  // of its two neighbours along that edge. The new boundary triangles keep
+  // their facet labels and must not fold in their facet (exact 2D
+  // orientation), the input edge's subsegments still chain from end to end,
+  // the link condition holds, and the change passes accept() like every
+  // other (strictly better worst min-sine of the star, exact orientation,
+  // the class, skinny and max_size guards).
+ public:
+  /// The vertices v may be contracted onto (empty when v may not be removed).
+  void contract_targets(int v, std::vector<int>& out) const;
+  /// Contracts edge (v, u) (u one of contract_targets(v)); true when accepted.
+  bool contract(int v, int u);
+  /// The best accepted contraction of v over contract_targets(v).
+  bool contract_vertex(int v);
+  /// A pass over the Steiner vertices of the live tets below
+  /// sin(kContractBelowDeg), worst tets first; returns the contractions made.
+  std::size_t contract_pass();
+  /// Whether v was removed by a contraction (it is in no live tet).
+  bool removed(int v) const { return v < int(removed_.size()) && removed_[v]; }
+
+ private:
+  /// v's star, its boundary triangles (indices into bnd_) and its targets;
+  /// false when v may not be removed.
+  bool removal(int v, std::vector<int>& star, std::vector<int>& bnd, std::vector<int>& targets) const;
+  /// The new tets and boundary changes of contracting (v, u), and their worst
+  /// min-sine; -HUGE_VAL when a check or accept() refuses it.
+  double contraction(int v, int u, const std::vector<int>& star, const std::vector<int>& bnd, std::vector<Tet>& fresh,
+                     std::vector<std::pair<int, std::array<int, 3>>>& boundary) const;
+  /// Whether v lies on or inside the sphere of a vertex ball (cached).
+  bool on_vertex_ball(int v) const;
+  /// Called by finish(): drops the removed vertices from r (renumbering the
+  /// others in order; input vertices keep their indices) and the deleted
+  /// boundary triangles. After it the Improver's own arrays are stale.
+  void drop_removed();
+  std::vector<char> removed_;
+  mutable std::vector<signed char> ball_point_;
+  std::vector<std::int64_t> contract_tried_;
 };
 
 /// The phase on a finished, conforming run's extracted mesh r: records the

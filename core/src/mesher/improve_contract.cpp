@@ -1,0 +1,296 @@
+// wqmesh: vertex removal by edge contraction in the improvement phase
+// (beyond the paper: WQMESH never removes a vertex; after Klingner and
+// Shewchuk's Stellar, whose vertex removal contracts an edge). See improve.h,
+// the block "Vertex removal by edge contraction", for the contract.
+//
+// Why (issue 14): near a small input angle (wedge.off 0.94 degrees, wedge-1.off
+// 1 degree) WQMESH refines densely, and a tet that spans the thin wedge between
+// the two facets has a dihedral angle of about the input angle whatever its
+// size; fewer vertices there means fewer such tets. On the models meshed at
+// 1169785, every vertex of a tet under 5 degrees lies in a protecting ball,
+// 90% of them are Steiner vertices of the two facets or of their edge.
+//
+// The protecting balls (paper, section 4.3). A contraction never adds a
+// vertex, so every ball stays as empty as it was. What it could undo is the
+// structure INITIALIZE builds at a sharp vertex: its vertex ball's sphere
+// cuts each input edge and facet at the sharp vertex in points (the ball
+// points and SOS points of section 4.1), so that the subsegments at the
+// vertex end on the sphere and the ball holds only its centre. We keep that:
+// a vertex on or inside a vertex ball's sphere (within 1e-9 of the radius) is
+// never removed, so no subsegment or subfacet from a sharp vertex reaches
+// past its ball (the ball's interior stays covered by tets at its centre
+// only). The doubled diametric balls of the sharp subsegments are tied to no
+// vertex: removing a Steiner vertex of a sharp edge merges two subsegments,
+// whose doubled balls (kept in the statistics, where the classes read them)
+// still cover the merged one; tets near the small angle keep being classified
+// by the same balls, and accept()'s class guard refuses a change that would
+// make more violations among its tets. Chosen so, because every vertex of a
+// bad tet on wedge and wedge-1 lies in some protecting ball: a rule that kept
+// every vertex inside a ball would remove none of them.
+//
+// Conformity stays exact: no coordinate changes, every new boundary triangle
+// is made of vertices of the facet it replaces a triangle of (same label), an
+// input edge loses one interior vertex and its two subsegments become one.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+
+#include "cgal_types.h"
+#include "geometry.h"
+#include "mesher/improve.h"
+
+namespace wqmesh::mesher {
+
+namespace {
+
+using Tri = std::array<int, 3>;
+
+/// A vertex this close to a vertex ball's sphere (relative to the radius)
+/// counts as on it: INITIALIZE's points are computed on the sphere, rounded.
+constexpr double kSphereSlack = 1e-9;
+
+/// Orientation of triangle abc seen along axis `drop` (projected onto the
+/// two other coordinates, in cyclic order): exact, by EPICK's 2D predicate.
+/// Its sign is that of the triangle's normal's component `drop`.
+int projected_orientation(const Point3& a, const Point3& b, const Point3& c, int drop) {
+  const int i = (drop + 1) % 3, j = (drop + 2) % 3;
+  using P2 = cgal::K::Point_2;
+  return int(CGAL::orientation(P2(a[i], a[j]), P2(b[i], b[j]), P2(c[i], c[j])));
+}
+
+Tri with(Tri t, int v, int u) {
+  for (int& x : t)
+    if (x == v) x = u;
+  return t;
+}
+
+bool holds(const Tri& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+}  // namespace
+
+bool Improver::on_vertex_ball(int v) const {
+  if (balls_ == nullptr) return false;
+  if (v >= int(ball_point_.size())) ball_point_.resize(P_.size(), -1);
+  if (ball_point_[v] < 0) {
+    ball_point_[v] = 0;
+    for (const ProtectingBall& b : balls_->all())
+      if (b.vertex_ball && std::sqrt(geometry::dist2(P_[v], b.center)) <= b.radius * (1 + kSphereSlack))
+        ball_point_[v] = 1;
+  }
+  return ball_point_[v] == 1;
+}
+
+bool Improver::removal(int v, std::vector<int>& S, std::vector<int>& bt, std::vector<int>& targets) const {
+  S.clear();
+  bt.clear();
+  targets.clear();
+  if (v < 0 || v >= int(P_.size()) || removed(v)) return false;
+  if (v < int(r_.input_vertex.size()) && r_.input_vertex[v] >= 0) return false;  // input vertices stay
+  if (on_vertex_ball(v)) return false;
+  star(v, S);
+  if (S.empty()) return false;
+  // v's boundary triangles: the faces at v of its star's tets that are one.
+  const std::vector<int>& label = r_.mesh.boundary_facet;
+  for (int t : S)
+    for (int k = 0; k < 4; ++k) {
+      const int n = nb_[t][k];
+      if (tets_[t][k] == v || n >= 0) continue;
+      const int b = -1 - n;
+      if (b >= int(bnd_.size()) || b >= int(label.size()) || label[b] < 0) return false;  // open, or no facet
+      bt.push_back(b);
+    }
+  if (bt.empty()) {
+    if (fixed_[v]) return false;  // an open mesh's vertex
+    for (int t : S)
+      for (int x : tets_[t])
+        if (x != v) targets.push_back(x);
+  } else {
+    // The boundary edges at v, each with the facets of its two triangles; a
+    // feature edge (two facets) is a subsegment of an input edge.
+    std::vector<std::pair<int, int>> ends;  // (other end, facet)
+    for (int b : bt)
+      for (int x : bnd_[b])
+        if (x != v) ends.push_back({x, label[b]});
+    std::sort(ends.begin(), ends.end());
+    std::vector<int> along, facets;
+    for (std::size_t i = 0; i < ends.size(); i += 2) {
+      // A closed surface: every boundary edge at v lies on exactly two
+      // boundary triangles.
+      if (i + 1 >= ends.size() || ends[i + 1].first != ends[i].first ||
+          (i + 2 < ends.size() && ends[i + 2].first == ends[i].first))
+        return false;
+      if (ends[i].second != ends[i + 1].second) along.push_back(ends[i].first);
+      facets.push_back(ends[i].second);
+      facets.push_back(ends[i + 1].second);
+      targets.push_back(ends[i].first);
+    }
+    std::sort(facets.begin(), facets.end());
+    facets.erase(std::unique(facets.begin(), facets.end()), facets.end());
+    if (along.empty() && facets.size() == 1) {
+      // On one facet: onto a neighbour along a boundary edge of that facet.
+    } else if (along.size() == 2 && facets.size() == 2) {
+      targets = along;  // a Steiner point of an input edge: along it only
+    } else {
+      return false;  // a corner of the boundary that is no input vertex
+    }
+  }
+  std::sort(targets.begin(), targets.end());
+  targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+  return !targets.empty();
+}
+
+void Improver::contract_targets(int v, std::vector<int>& out) const {
+  std::vector<int> S, bt;
+  removal(v, S, bt, out);
+}
+
+double Improver::contraction(int v, int u, const std::vector<int>& S, const std::vector<int>& bt,
+                             std::vector<Tet>& fresh, std::vector<std::pair<int, Tri>>& boundary) const {
+  fresh.clear();
+  boundary.clear();
+  // The link condition: a vertex adjacent to both v and u is a vertex of a
+  // tet holding edge vu (else the contraction would double an edge).
+  std::vector<int> SU, common, shared;
+  star(u, SU);
+  for (int t : S) {
+    if (has(t, u)) {
+      for (int x : tets_[t]) shared.push_back(x);
+      continue;
+    }
+    Tet T = tets_[t];
+    for (int& x : T)
+      if (x == v) x = u;
+    fresh.push_back(T);
+  }
+  if (shared.empty() || fresh.empty()) return -HUGE_VAL;
+  std::sort(shared.begin(), shared.end());
+  for (int t : S)
+    for (int x : tets_[t]) common.push_back(x);
+  std::sort(common.begin(), common.end());
+  common.erase(std::unique(common.begin(), common.end()), common.end());
+  for (int t : SU)
+    for (int x : tets_[t])
+      if (std::binary_search(common.begin(), common.end(), x) && !std::binary_search(shared.begin(), shared.end(), x))
+        return -HUGE_VAL;
+  // The boundary: triangles at edge vu go, the others get u for v; in each
+  // facet the fan must not fold (every triangle, old and new, seen along the
+  // facet's dominant axis with the same exact orientation) and no new
+  // triangle may be degenerate (three exactly collinear vertices).
+  for (int b : bt) {
+    if (holds(bnd_[b], u)) {
+      boundary.push_back({b, {{-1, -1, -1}}});
+      continue;
+    }
+    const Tri n = with(bnd_[b], v, u);
+    const Point3 &a = P_[n[0]], &c = P_[n[1]], &d = P_[n[2]];
+    if (CGAL::collinear(cgal::to_cgal(a), cgal::to_cgal(c), cgal::to_cgal(d))) return -HUGE_VAL;
+    // The facet's direction: the area normals of v's triangles in it.
+    Point3 normal{{0, 0, 0}};
+    for (int o : bt)
+      if (r_.mesh.boundary_facet[o] == r_.mesh.boundary_facet[b]) {
+        const Tri& t = bnd_[o];
+        normal = geometry::add(normal,
+                               geometry::cross(geometry::sub(P_[t[1]], P_[t[0]]), geometry::sub(P_[t[2]], P_[t[0]])));
+      }
+    int drop = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(normal[k]) > std::fabs(normal[drop])) drop = k;
+    const int sign = normal[drop] > 0 ? 1 : -1;
+    const Tri& o = bnd_[b];
+    if (projected_orientation(P_[o[0]], P_[o[1]], P_[o[2]], drop) != sign ||
+        projected_orientation(a, c, d, drop) != sign)
+      return -HUGE_VAL;
+    boundary.push_back({b, n});
+  }
+  double worst = -HUGE_VAL;
+  if (!accept(S, fresh, worst)) return -HUGE_VAL;
+  return worst;
+}
+
+bool Improver::contract(int v, int u) {
+  std::vector<int> S, bt, targets;
+  if (!removal(v, S, bt, targets) || !std::binary_search(targets.begin(), targets.end(), u)) return false;
+  std::vector<Tet> fresh;
+  std::vector<std::pair<int, Tri>> boundary;
+  if (contraction(v, u, S, bt, fresh, boundary) == -HUGE_VAL || !replace(S, fresh, boundary, v)) return false;
+  if (v >= int(removed_.size())) removed_.resize(P_.size(), 0);
+  removed_[v] = 1;
+  fixed_[v] = 1;
+  vtet_[v] = -1;
+  ++st_.contractions;
+  return true;
+}
+
+bool Improver::contract_vertex(int v) {
+  std::vector<int> S, bt, targets;
+  if (!removal(v, S, bt, targets)) return false;
+  double best = -HUGE_VAL;
+  int best_u = -1;
+  std::vector<Tet> fresh;
+  std::vector<std::pair<int, Tri>> boundary;
+  for (int u : targets) {
+    const double w = contraction(v, u, S, bt, fresh, boundary);
+    if (w > best) best = w, best_u = u;
+  }
+  return best_u >= 0 && contract(v, best_u);
+}
+
+std::size_t Improver::contract_pass() {
+  const double below = std::sin(kContractBelowDeg * geometry::kPi / 180);
+  std::vector<int> list;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t)) && q_[t] < below) list.push_back(int(t));
+  std::stable_sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b]; });
+  std::size_t n = 0;
+  for (int t : list) {
+    if (!poll()) break;
+    if (!alive(t) || !(q_[t] < below)) continue;
+    const Tet T = tets_[t];
+    for (int v : T) {
+      // Retried only after a change touched v's star.
+      if (v >= int(contract_tried_.size())) contract_tried_.resize(P_.size(), -1);
+      if (contract_tried_[v] >= 0 && v < int(vtime_.size()) && vtime_[v] <= contract_tried_[v]) continue;
+      if (contract_vertex(v)) {
+        ++n;
+        break;  // t is gone
+      }
+      contract_tried_[v] = clock_;
+    }
+  }
+  return n;
+}
+
+void Improver::drop_removed() {
+  if (st_.contractions == 0) return;
+  TetMesh& m = r_.mesh;
+  std::vector<int> id(P_.size(), -1);
+  int n = 0;
+  for (std::size_t v = 0; v < P_.size(); ++v)
+    if (!removed(int(v))) {
+      id[v] = n;
+      P_[n] = P_[v];
+      if (v < m.weights.size()) m.weights[n] = m.weights[v];
+      if (v < r_.nearest_neighbour.size()) r_.nearest_neighbour[n] = r_.nearest_neighbour[v];
+      if (v < r_.input_vertex.size()) r_.input_vertex[n] = r_.input_vertex[v];
+      ++n;
+    }
+  P_.resize(n);
+  if (m.weights.size() > std::size_t(n)) m.weights.resize(n);
+  if (r_.nearest_neighbour.size() > std::size_t(n)) r_.nearest_neighbour.resize(n);
+  if (r_.input_vertex.size() > std::size_t(n)) r_.input_vertex.resize(n);
+  for (auto& T : m.tets)
+    for (int& x : T) x = id[x];
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < m.boundary.size(); ++b) {
+    if (m.boundary[b][0] < 0) continue;  // deleted by a contraction
+    Tri t = m.boundary[b];
+    for (int& x : t) x = id[x];
+    m.boundary[kept] = t;
+    if (b < m.boundary_facet.size()) m.boundary_facet[kept] = m.boundary_facet[b];
+    ++kept;
+  }
+  m.boundary.resize(kept);
+  if (m.boundary_facet.size() > kept) m.boundary_facet.resize(kept);
+}
+
+}  // namespace wqmesh::mesher
