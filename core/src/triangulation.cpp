@@ -119,16 +119,69 @@ struct RegularTriangulation::Impl {
     for (const Rt::Cell_handle& x : walk_b) x->tds_data().clear();
     return found;
   }
-  // Whether abc is a facet (as find_edge; c, i, j, k as CGAL's is_facet).
+  // Whether abv is a facet (c, i, j, k as CGAL's is_facet). Beyond a walk
+  // of the star of a (issue 15): the edge ab is found by find_edge (the
+  // stars of a and b in turn), then the cells around ab are circulated for
+  // one holding v; abv is a facet exactly when a cell around ab holds v.
   bool find_facet(Rt::Vertex_handle a, Rt::Vertex_handle b, Rt::Vertex_handle v, Rt::Cell_handle& c, int& i, int& j,
                   int& k) const {
     if (rt.dimension() < 3) return rt.is_facet(a, b, v, c, i, j, k);
-    return walk_star(a, [&](Rt::Cell_handle x) {
-      if (!x->has_vertex(b, j) || !x->has_vertex(v, k)) return false;
+    Rt::Cell_handle e;
+    int ei, ej;
+    if (!find_edge(a, b, e, ei, ej)) return false;
+    bool found = false;
+    circulate_edge(e, ei, ej, [&](Rt::Cell_handle x) {
+      if (!x->has_vertex(v, k)) return false;
       c = x;
       i = x->index(a);
+      j = x->index(b);
+      found = true;
       return true;
     });
+    return found;
+  }
+  // Visits the cells around the edge (c, i, j) until `stop` says so. The
+  // cells around an edge have distinct opposite vertices: at most one per
+  // vertex of the triangulation, the infinite one included; past that bound
+  // the triangulation is broken (LoopBoundError).
+  template <class Stop>
+  void circulate_edge(Rt::Cell_handle c, int i, int j, Stop&& stop) const {
+    const std::size_t bound = rt.number_of_vertices() + 1;
+    std::size_t n = 0;
+    auto cell = rt.incident_cells(c, i, j), done = cell;
+    do {
+      if (++n > bound)
+        throw LoopBoundError("RegularTriangulation: the cells around edge " + std::to_string(id_of(c->vertex(i))) +
+                             "-" + std::to_string(id_of(c->vertex(j))) + " passed their bound of " +
+                             std::to_string(bound) + " (the number of vertices plus 1)");
+      if (stop(Rt::Cell_handle(cell))) return;
+    } while (++cell != done);
+  }
+  // The cell behind a CellRef when that slot still holds a cell (the cells
+  // live in a Compact_container whose blocks are never freed while the
+  // triangulation lives: the slot can be read, and says if it is used);
+  // else a null handle.
+  Rt::Cell_handle cell_of(CellRef ref) const {
+    if (ref == nullptr) return Rt::Cell_handle();
+    using Cell = Rt::Triangulation_data_structure::Cell;
+    using Cells = Rt::Triangulation_data_structure::Cell_range;
+    const Rt::Cell_handle c = Cells::s_iterator_to(const_cast<Cell&>(*static_cast<const Cell*>(ref)));
+    return rt.tds().cells().is_used(c) ? c : Rt::Cell_handle();
+  }
+  // The vertices of the cells around edge (c, i, j) other than its ends,
+  // sorted, without repeats (edge_ring's answer).
+  void ring_of(Rt::Cell_handle c, int i, int j, std::vector<int>& out) const {
+    out.clear();
+    const Rt::Vertex_handle a = c->vertex(i), b = c->vertex(j);
+    circulate_edge(c, i, j, [&](Rt::Cell_handle x) {
+      for (int k = 0; k < 4; ++k) {
+        const Rt::Vertex_handle v = x->vertex(k);
+        if (v != a && v != b) out.push_back(id_of(v));
+      }
+      return false;
+    });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
   // Visits the cells around a (through their faces at a) until `stop` says
   // so; returns whether it did. Bounded by the number of cells: a
@@ -291,13 +344,8 @@ void RegularTriangulation::incident_cells(int v, std::vector<Tet>& out, std::vec
 
 bool RegularTriangulation::is_cell(const Tet& t, CellRef ref) const {
   if (ref == nullptr) return is_cell(t);
-  // The cells live in a Compact_container whose blocks are never freed while
-  // the triangulation lives: the slot can be read, and says if it is used.
-  using Cell = Rt::Triangulation_data_structure::Cell;
-  using Cells = Rt::Triangulation_data_structure::Cell_range;
-  const Cell& cell = *static_cast<const Cell*>(ref);
-  const Rt::Cell_handle c = Cells::s_iterator_to(const_cast<Cell&>(cell));
-  if (!impl_->rt.tds().cells().is_used(c)) return false;
+  const Rt::Cell_handle c = impl_->cell_of(ref);
+  if (c == Rt::Cell_handle()) return false;
   Tet a = impl_->tet_of(c), b = t;
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());
@@ -316,23 +364,21 @@ bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out) const 
   Rt::Cell_handle c;
   int i, j;
   if (!impl_->find_edge(impl_->handle(a), impl_->handle(b), c, i, j)) return false;
-  // The cells around an edge have distinct opposite vertices: at most one
-  // per vertex of the triangulation, the infinite one included.
-  const std::size_t bound = impl_->rt.number_of_vertices() + 1;
-  std::size_t n = 0;
-  auto cell = impl_->rt.incident_cells(c, i, j), done = cell;
-  do {
-    if (++n > bound)
-      throw LoopBoundError("RegularTriangulation::edge_ring: the cells around edge " + std::to_string(a) + "-" +
-                           std::to_string(b) + " passed their bound of " + std::to_string(bound) +
-                           " (the number of vertices plus 1)");
-    for (int k = 0; k < 4; ++k) {
-      const Rt::Vertex_handle v = cell->vertex(k);
-      if (v != c->vertex(i) && v != c->vertex(j)) out.push_back(impl_->id_of(v));
-    }
-  } while (++cell != done);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  impl_->ring_of(c, i, j, out);
+  return true;
+}
+
+bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out, CellRef& cell) const {
+  out.clear();
+  const Rt::Vertex_handle va = impl_->handle(a), vb = impl_->handle(b);
+  Rt::Cell_handle c = impl_->rt.dimension() == 3 ? impl_->cell_of(cell) : Rt::Cell_handle();
+  int i, j;
+  if (c == Rt::Cell_handle() || !c->has_vertex(va, i) || !c->has_vertex(vb, j)) {
+    cell = nullptr;
+    if (!impl_->find_edge(va, vb, c, i, j)) return false;
+    cell = static_cast<CellRef>(&*c);
+  }
+  impl_->ring_of(c, i, j, out);
   return true;
 }
 

@@ -778,5 +778,46 @@ TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
   EXPECT_GT(order_free_models, 0);
 }
 
+// The record of the rule 1/4 test a subsegment keeps (Subsegment::
+// tested_at, queued_at, encroached; issue 15) is reused only when no
+// insertion queued the subsegment since the test: then it must be what the
+// test says now. Checked against a fresh segment_encroached of every
+// subsegment after every insertion of CONFORM and REFINE.
+TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
+  std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const Input in = load(file);
+    const mesher::Domain dom(in.plc, in.analysis);
+    MeshOptions o;
+    ProgressCallback none;
+    mesher::Mesher m(dom, o, none);
+    std::size_t kept = 0, insertions = 0;
+    auto check = [&] {
+      for (const auto& [k, s] : m.subcomplex().subsegments()) {
+        if (s.tested_at == 0 || s.tested_at < s.queued_at) continue;  // tested again when next popped
+        ++kept;
+        mesher::Subsegment fresh = s;
+        fresh.cell = nullptr;  // the walk, not the hint
+        ASSERT_EQ(s.encroached, m.subcomplex().segment_encroached(fresh)) << "subsegment " << s.a << "-" << s.b;
+      }
+    };
+    m.inserter().observer = [&](const mesher::Insertion&, int, int id) {
+      if (id < 0) return;
+      ++insertions;
+      check();
+    };
+    m.initialize();
+    m.conform();
+    check();
+    m.refine();
+    check();
+    EXPECT_GT(insertions, 0u);
+    EXPECT_GT(kept, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace wqmesh

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -120,6 +121,101 @@ TEST(Triangulation, EdgeTestsAgreeWithTheCellsAtAHighDegreeVertex) {
       ++checked;
     }
   EXPECT_GT(checked, 5000);
+}
+
+TEST(Triangulation, EdgeRingHintsAndFacetCellsAgreeWithTheCells) {
+  // edge_ring with a hint cell kept by the caller (the subsegments' O(1) way
+  // to their edge, issue 15) and facet_cells / is_facet (the edge test, then
+  // the ring around the edge) against a brute-force recomputation from every
+  // vertex's cells: at a vertex of high degree, for non-edges and
+  // non-facets, and with hints made stale by later insertions (their cells
+  // destroyed, their slots reused by other cells).
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g(0, 1);
+  RegularTriangulation t;
+  t.insert({0, 0, 0});
+  auto add = [&](int count) {
+    for (int i = 0; i < count; ++i) {
+      Point3 p{{g(rng), g(rng), g(rng)}};
+      const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+      const double r = i % 3 ? 1.0 : 2.5;
+      for (double& x : p) x *= r / n;
+      t.insert(p, 0, 0);
+    }
+  };
+  using Key2 = std::pair<int, int>;
+  using Key3 = std::array<int, 3>;
+  auto sorted_tet = [](Tet c) {
+    std::sort(c.begin(), c.end());
+    return c;
+  };
+  std::map<Key2, CellRef> hints;  // kept across the rounds, as a Subsegment keeps its cell
+  std::vector<int> ring;
+  std::vector<Tet> star;
+  int edges_checked = 0, facets_checked = 0, carried = 0;
+  for (int round = 0; round < 3; ++round) {
+    add(150);
+    const int n = t.number_of_vertices();
+    std::map<Key2, std::set<int>> rings;
+    std::map<Key3, std::set<Tet>> facets;
+    for (int v = 0; v < n; ++v) {
+      t.incident_cells(v, star);
+      for (const Tet& c : star) {
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j)
+            if (c[i] == v && j != i && c[j] != kInfinite)
+              for (int x : c)
+                if (x != c[i] && x != c[j]) rings[{std::min(c[i], c[j]), std::max(c[i], c[j])}].insert(x);
+        for (int k = 0; k < 4; ++k) {
+          Key3 f{{c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]}};
+          std::sort(f.begin(), f.end());
+          if (f[0] != kInfinite) facets[f].insert(sorted_tet(c));
+        }
+      }
+    }
+    for (int a = 0; a < n; a += 2)
+      for (int b = a + 1; b < n; b += 5) {
+        const auto it = rings.find({a, b});
+        CellRef& hint = hints[{a, b}];
+        const bool had = hint != nullptr;
+        for (int pass = 0; pass < 2; ++pass) {  // the walk (or a stale hint), then the fresh hint
+          ASSERT_EQ(t.edge_ring(a, b, ring, hint), it != rings.end()) << a << "-" << b;
+          EXPECT_EQ(hint != nullptr, it != rings.end()) << a << "-" << b;
+          if (it != rings.end()) EXPECT_EQ(std::set<int>(ring.begin(), ring.end()), it->second) << a << "-" << b;
+          EXPECT_TRUE(std::is_sorted(ring.begin(), ring.end()));
+          EXPECT_EQ(std::adjacent_find(ring.begin(), ring.end()), ring.end());
+        }
+        carried += had && round > 0;
+        ++edges_checked;
+      }
+    for (int a = 0; a < n; a += 3)
+      for (int b = a + 1; b < n; b += 4)
+        for (int c = b + 1; c < n; c += 9) {
+          const auto it = facets.find({{a, b, c}});
+          const bool is = it != facets.end();
+          EXPECT_EQ(t.is_facet(a, b, c), is) << a << "-" << b << "-" << c;
+          EXPECT_EQ(t.is_facet(c, a, b), is) << c << "-" << a << "-" << b;
+          Tet c1, c2;
+          ASSERT_EQ(t.facet_cells(b, c, a, c1, c2), is) << a << "-" << b << "-" << c;
+          if (is) {
+            ASSERT_EQ(it->second.size(), 2u);
+            EXPECT_EQ((std::set<Tet>{sorted_tet(c1), sorted_tet(c2)}), it->second) << a << "-" << b << "-" << c;
+          }
+          ++facets_checked;
+        }
+    // Every facet of the brute-force list is found (the sampled triples
+    // above are mostly non-facets).
+    int listed = 0;
+    for (const auto& [f, cells] : facets) {
+      if (listed++ % 7) continue;
+      Tet c1, c2;
+      ASSERT_TRUE(t.facet_cells(f[0], f[1], f[2], c1, c2));
+      EXPECT_EQ((std::set<Tet>{sorted_tet(c1), sorted_tet(c2)}), cells);
+    }
+  }
+  EXPECT_GT(edges_checked, 5000);
+  EXPECT_GT(facets_checked, 5000);
+  EXPECT_GT(carried, 100);  // hints carried over 150 insertions were tested
 }
 
 TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {

@@ -12,8 +12,15 @@
 
 namespace wqmesh::mesher {
 
+void Queues::queue(std::uint64_t k, const Subsegment& s) {
+  segments_.push_back(k);
+  s.queued_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
+}
+
+void Queues::push_segment(std::uint64_t k) { queue(k, sub_.subsegment(k)); }
+
 void Queues::fill(bool tets) {
-  for (const auto& [k, s] : sub_.subsegments()) segments_.push_back(k);
+  for (const auto& [k, s] : sub_.subsegments()) queue(k, s);
   std::sort(segments_.begin(), segments_.end());
   for (const Subfacet& h : sub_.subfacets()) subfacets_.push_back(h);
   if (tets) {
@@ -32,19 +39,32 @@ void Queues::enqueue_around(int v) {
   tri_.incident_cells(v, cells, &refs);
   // The upkeep always completes (a stop is seen by the caller's loop).
   meter_.poll(cells.size());
-  std::vector<int> ring;
+  // The ring (v and its neighbours), sorted, and marked in ring_mark_ with
+  // a stamp of this call: in_ring is O(1) (a binary search of the ring was a
+  // tenth of a run; issue 15).
+  std::vector<int>& ring = ring_;
+  ring.clear();
   for (const Tet& c : cells)
     for (int x : c)
       if (x != kInfinite) ring.push_back(x);
   std::sort(ring.begin(), ring.end());
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  auto in_ring = [&](int x) { return std::binary_search(ring.begin(), ring.end(), x); };
-  // Subsegments: the new ones, and those the new vertex may encroach.
+  if (ring_mark_.size() < std::size_t(tri_.number_of_vertices())) ring_mark_.resize(tri_.number_of_vertices(), 0);
+  if (++stamp_ == 0) {  // wrapped: no old stamp may match
+    std::fill(ring_mark_.begin(), ring_mark_.end(), 0);
+    stamp_ = 1;
+  }
+  for (int x : ring) ring_mark_[x] = stamp_;
+  auto in_ring = [&](int x) { return ring_mark_[x] == stamp_; };
+  // Subsegments: the new ones, and those the new vertex may encroach. The
+  // key names both ends (edge_key), so the test needs no look-up. Every
+  // insertion that changes the cells around a subsegment ab has a and b in
+  // its ring (they are vertices of a destroyed cell, so on the boundary of
+  // the cavity, so adjacent to v), so it queues ab here: what
+  // split_encroached_subsegment's record of the last test relies on.
   for (int x : ring)
-    for (std::uint64_t k : sub_.subsegments_at(x)) {
-      const Subsegment& s = sub_.subsegment(k);
-      if (in_ring(s.a) && in_ring(s.b)) segments_.push_back(k);
-    }
+    for (std::uint64_t k : sub_.subsegments_at(x))
+      if (in_ring(int(k >> 32)) && in_ring(int(k & 0xFFFFFFFFu))) queue(k, sub_.subsegment(k));
   // Subfacets: those with all vertices in the ring (new ones, and those the
   // vertex may encroach or remove from Del V).
   // `seen`: the triangles considered so far, sorted (a few dozen: a sorted
@@ -135,8 +155,16 @@ bool Queues::process(Inserter& inserter, const Rule6& rule6) {
 
 void Queues::split_encroached_subsegment(Inserter& inserter, std::uint64_t k, Rule rule) {
   const auto it = sub_.subsegments().find(k);
-  if (it == sub_.subsegments().end() || !sub_.segment_encroached(it->second)) return;
-  inserter.insert(sub_.splite(it->second), rule);
+  if (it == sub_.subsegments().end()) return;
+  // The answer of a test made after the last queueing of k still holds
+  // (Subsegment::queued_at): the cells around it are the same.
+  const Subsegment& s = it->second;
+  if (s.tested_at == 0 || s.tested_at < s.queued_at) {
+    s.encroached = sub_.segment_encroached(s);
+    s.tested_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
+  }
+  if (!s.encroached) return;
+  inserter.insert(sub_.splite(s), rule);
   meter_.tick();
 }
 

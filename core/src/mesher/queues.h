@@ -10,6 +10,7 @@
 #include <functional>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include "mesher/domain.h"
 #include "mesher/rules.h"
@@ -27,7 +28,7 @@ class Queues {
       : dom_(domain), tri_(tri), sub_(sub), meter_(meter) {}
 
   /// Queues subsegment k (rules 1 and 4).
-  void push_segment(std::uint64_t k) { segments_.push_back(k); }
+  void push_segment(std::uint64_t k);
   /// Queues tet t again (rule 6).
   void push_tet(const Tet& t, CellRef ref) { tets_.push_back({t, ref}); }
   /// The start of CONFORM (and, with the tets, of REFINE): every subsegment,
@@ -71,6 +72,13 @@ class Queues {
   /// again after its split was deferred to another feature; bounded by
   /// Caps::kRetries so that no feature keeps the refinement busy forever.
   std::unordered_map<Tri, int, TriHash> retries_;
+  /// enqueue_around's ring of the new vertex, and its marks by vertex id
+  /// (== stamp_ for the vertices of the current ring).
+  /// Queues subsegment s under its key k, noting when (Subsegment::queued_at).
+  void queue(std::uint64_t k, const Subsegment& s);
+  std::vector<int> ring_;
+  std::vector<unsigned> ring_mark_;
+  unsigned stamp_ = 0;
 };
 
 }  // namespace wqmesh::mesher

@@ -137,6 +137,8 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
       left.b = id;
       right.a = id;
       left.tb = right.ta = ins.angle;
+      left.cell = right.cell = nullptr;  // found on their first test
+      left.tested_at = right.tested_at = 0;
       new_segments.push_back(add_segment(left));
       new_segments.push_back(add_segment(right));
     }
@@ -174,7 +176,7 @@ bool Subcomplex::segment_encroached(const Subsegment& e) const {
   // the shield subfacets in Del V, rule 2 checks directly.
   const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
   std::vector<int> ring;
-  if (!tri_.edge_ring(e.a, e.b, ring)) return true;  // missing: a vertex lies in every circumball
+  if (!tri_.edge_ring(e.a, e.b, ring, e.cell)) return true;  // missing: a vertex lies in every circumball
   for (int x : ring)
     if (x != kInfinite && verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b)) return true;
   return false;
@@ -236,12 +238,19 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
     if (f0.empty()) continue;
     facets_of(t[1], f1);
     facets_of(t[2], f2);
+    // The ball test first (arithmetic on three points), the subfacet test
+    // (a walk in f's planar triangulation) only for a triangle whose
+    // diametric ball holds c: the same subfacets, in the same order.
+    bool inside = false, tested = false;
     for (int f : f0) {
       if (std::find(f1.begin(), f1.end(), f) == f1.end() || std::find(f2.begin(), f2.end(), f) == f2.end()) continue;
-      if (!is_subfacet(f, t)) continue;
-      double r2;
-      const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
-      if (dist2(c, cc) < r2) facet_out.push_back({f, t});
+      if (!tested) {
+        double r2;
+        const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
+        inside = dist2(c, cc) < r2;
+        tested = true;
+      }
+      if (inside && is_subfacet(f, t)) facet_out.push_back({f, t});
     }
   }
 }

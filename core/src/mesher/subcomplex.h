@@ -79,6 +79,19 @@ struct Subsegment {
   double ta = 0, tb = 0;
   bool in_ball = false;  ///< inside a vertex ball: protected, never split
   bool sharp = false;    ///< on a sharp edge, outside the vertex balls
+  /// A cell that held ab when its encroachment was last tested (a hint for
+  /// RegularTriangulation::edge_ring, checked there before use; beyond the
+  /// paper, issue 15: the O(1) way to the subsegment in Del V instead of a
+  /// walk of the stars of its ends). Only a cache: never part of the answer.
+  mutable CellRef cell = nullptr;
+  /// Queues' record of the rule 1/4 test (beyond the paper, issue 15): the
+  /// size of V when the subsegment was last queued and when it was last
+  /// tested (0: never), and that test's answer. The answer depends only on
+  /// the cells around ab, and every insertion that changes them queues ab
+  /// (Queues::enqueue_around), so a test after the last queueing is still
+  /// valid: the queue's repeats of ab cost a comparison.
+  mutable std::uint32_t queued_at = 0, tested_at = 0;
+  mutable bool encroached = false;
 };
 
 /// A subfacet: a triangle of facet f's planar Delaunay triangulation lying in f.
