@@ -3,6 +3,7 @@
 #include "mesher/classify.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -128,15 +129,25 @@ bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   r.slivers = r.skinny = r.near_small_angle = r.violations = r.orthoradius_skinny = 0;
   r.tet_class.clear();
   r.orthoradius_edge.clear();
+  // The old measures go first, so that they and the new ones are never held
+  // together (issue 15, the peak memory).
+  std::vector<TetQuality>().swap(r.quality);
   r.quality = mesh_quality(mesh, keep_going, false);
   if (r.quality.size() != mesh.tets.size()) return false;
   // The weighted view (the paper's rho with PUMP's weights): no class uses it.
+  r.orthoradius_edge.reserve(mesh.tets.size());
   if (mesh.weights.empty()) {
     for (const TetQuality& q : r.quality) r.orthoradius_edge.push_back(q.radius_edge);
   } else {
-    const std::vector<TetQuality> weighted = mesh_quality(mesh, keep_going, true);
-    if (weighted.size() != mesh.tets.size()) return false;
-    for (const TetQuality& q : weighted) r.orthoradius_edge.push_back(q.radius_edge);
+    // mesh_quality(mesh, keep_going, true)'s radius_edge, one tet at a time
+    // (not a second whole-mesh TetQuality vector).
+    for (const auto& t : mesh.tets) {
+      if (keep_going && !keep_going()) return false;
+      const std::array<double, 4> w{{mesh.weights[t[0]], mesh.weights[t[1]], mesh.weights[t[2]], mesh.weights[t[3]]}};
+      r.orthoradius_edge.push_back(
+          tet_quality(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], &w)
+              .radius_edge);
+    }
   }
   for (double rho : r.orthoradius_edge) r.orthoradius_skinny += rho > opt.rho0;
   MeshClasses c;

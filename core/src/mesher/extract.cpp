@@ -296,33 +296,54 @@ std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, 
   return slivers;
 }
 
-MeshResult Extract::run(bool stoppable) {
+MeshResult Extract::run() {
+  MeshResult r = mesh();
+  // The quality and classes of the tets (classify.cpp).
+  classify_tets(r, balls_, opt_);
+  return r;
+}
+
+MeshResult Extract::mesh() {
   MeshResult r;
   r.stopped = meter_.stop_reason();
   r.conforming = sub_.conforms();
   r.protecting_balls = balls_.all();
-  // Beyond the paper (issue 10, stops that reach every step): a stoppable
-  // extraction polls once per vertex, cell or tet it handles.
-  const auto must_stop = [&] { return stoppable && !meter_.poll(1, false); };
-  const auto stopped_result = [&] {
-    MeshResult s;
-    s.stopped = meter_.stop_reason();
-    s.protecting_balls = balls_.all();
-    return s;
-  };
   if (nn_.size() != verts_.size()) {
     std::vector<double> nn(verts_.size());
-    for (std::size_t v = 0; v < verts_.size(); ++v) {
-      if (must_stop()) return stopped_result();
-      nn[v] = nearest_neighbour(tri_, static_cast<int>(v));
-    }
+    for (std::size_t v = 0; v < verts_.size(); ++v) nn[v] = nearest_neighbour(tri_, static_cast<int>(v));
     nn_.swap(nn);
   }
-  // In canonical order, so that the output is the same on every platform.
-  const RegularTriangulation::CellGraph g = canonical(stoppable ? meter_.scan_cell_graph(tri_) : tri_.cell_graph());
-  if (stoppable && meter_.stopped()) return stopped_result();
-  const std::vector<char> inside = labels(g, r.conforming, stoppable);
-  if (stoppable && meter_.stopped()) return stopped_result();
+  // The output is in canonical order (canonical() above), so that it is the
+  // same on every platform: the interior cells sorted by their canonical
+  // vertex tuples, each in its canonical vertex order. When the labels do
+  // not depend on the order of the cells (a conforming run whose walls are a
+  // mod-2 cycle: even_walls), they are taken on CGAL's order as it is and
+  // only the interior cells are sorted (an index and a tuple per interior
+  // cell), instead of a second, canonical copy of the whole cell graph with
+  // its sort's entries and ranks (issue 15, the peak memory: the two graphs
+  // were about 140 bytes per output tet on anchor.off); the same cells, the
+  // same order, the same output. Otherwise (a slit, a run that does not
+  // conform) the labels are taken on the canonical graph, as before.
+  RegularTriangulation::CellGraph g = tri_.cell_graph();
+  bool order_free = false;
+  std::vector<char> inside;
+  if (r.conforming) inside = interior_labels(dom_, sub_, g, meter_, false, &order_free);
+  if (!(r.conforming && order_free)) {
+    inside.clear();
+    g = canonical(g);
+    inside = labels(g, r.conforming, false);
+  }
+  struct Entry {
+    Tet t;  ///< canonical vertex order
+    int cell;
+  };
+  std::vector<Entry> order;
+  order.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), char(1))));
+  for (std::size_t c = 0; c < g.cells.size(); ++c)
+    if (inside[c]) order.push_back({canonical_tet(g.cells[c]), static_cast<int>(c)});
+  // No two cells have the same four vertices: the order is the tuples'.
+  std::sort(order.begin(), order.end(), [](const Entry& a, const Entry& b) { return a.t < b.t; });
+
   // Which input facet each wall triangle lies in.
   std::unordered_map<Tri, int, TriHash> facet_of;
   for (const Subfacet& h : sub_.subfacets())
@@ -366,22 +387,28 @@ MeshResult Extract::run(bool stoppable) {
   for (std::size_t v = 0; v < verts_.size(); ++v)
     if (verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices) id(static_cast<int>(v));
   static const int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  for (std::size_t c = 0; c < g.cells.size(); ++c) {
-    if (must_stop()) return stopped_result();
-    if (!inside[c]) continue;
-    const Tet& t = g.cells[c];
+  mesh.tets.reserve(order.size());
+  for (const Entry& e : order) {
+    const Tet& t = e.t;
+    // Vertex k of t is vertex perm[k] of the cell, so the cell across t's
+    // face k is the cell's neighbour perm[k].
+    const std::array<int, 4> perm = canonical_perm(g.cells[e.cell]);
     mesh.tets.push_back({{id(t[0]), id(t[1]), id(t[2]), id(t[3])}});
     for (int k = 0; k < 4; ++k) {
-      if (inside[g.neighbor[c][k]]) continue;
+      if (inside[g.neighbor[e.cell][perm[k]]]) continue;
       const Tri f{{t[kOutward[k][0]], t[kOutward[k][1]], t[kOutward[k][2]]}};
       mesh.boundary.push_back({{id(f[0]), id(f[1]), id(f[2])}});
       const auto it = facet_of.find(sorted(f));
       mesh.boundary_facet.push_back(it == facet_of.end() ? common_facet(f) : it->second);
     }
   }
-  // The quality and classes of the tets (classify.cpp).
-  if (!classify_tets(r, balls_, opt_, stoppable ? std::function<bool()>([&] { return !must_stop(); }) : nullptr))
-    return stopped_result();
+  // Exactly the size: the result outlives the triangulation (the peak).
+  mesh.vertices.shrink_to_fit();
+  mesh.weights.shrink_to_fit();
+  mesh.boundary.shrink_to_fit();
+  mesh.boundary_facet.shrink_to_fit();
+  r.nearest_neighbour.shrink_to_fit();
+  r.input_vertex.shrink_to_fit();
   return r;
 }
 

@@ -31,11 +31,17 @@ class Extract {
           const std::vector<MVertex>& vertices, const Subcomplex& sub, const ProtectingBalls& balls,
           std::vector<double>& nn, WorkMeter& meter)
       : dom_(domain), opt_(options), tri_(tri), verts_(vertices), sub_(sub), balls_(balls), nn_(nn), meter_(meter) {}
-  /// Interior tets, classes (classify_tets), statistics. `stoppable`: poll while extracting
-  /// (the count of QMESH's slivers before PUMP), so that a cancel takes
-  /// effect within a bounded amount of work; the result is then empty, with
-  /// `stopped` set, once the run must stop.
-  MeshResult run(bool stoppable = false);
+  /// Interior tets, classes (classify_tets), statistics: mesh() then
+  /// classify_tets.
+  MeshResult run();
+  /// The interior tets with their boundary triangles and per-vertex data
+  /// (r.mesh, nearest_neighbour, input_vertex, conforming, stopped,
+  /// protecting_balls), without the per-tet measures and classes: nothing of
+  /// the result refers to the triangulation or the subcomplex, so the caller
+  /// may free them before classify_tets (mesh_polyhedron.cpp does: issue 15,
+  /// the peak memory). Transient memory beyond the result: one cell graph
+  /// with its labels and the interior cells' canonical order (see the body).
+  MeshResult mesh();
   /// The inside slivers run() would count now (QMESH's, before PUMP),
   /// without building the mesh; polls, and gives 0 once the run must stop.
   /// `scan` and `scan_labels` get the cell graph (CGAL's order) and its
@@ -45,7 +51,7 @@ class Extract {
 
  private:
   /// The labels run() takes for g: interior_labels, or RayParity's when the
-  /// run does not conform.
+  /// run does not conform. `stoppable`: poll (count_qmesh_slivers' scan).
   std::vector<char> labels(const RegularTriangulation::CellGraph& g, bool conforming, bool stoppable);
 
   const Domain& dom_;

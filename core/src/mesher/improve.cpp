@@ -902,6 +902,10 @@ bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   s.near_small_angle_before = r.near_small_angle;
   s.violations_before = r.violations;
   s.tets_before = r.mesh.tets.size();
+  // The measures are stale once the mesh changes and classify_tets below
+  // makes them anew: freed now, so that they are not held beside the phase's
+  // own arrays (issue 15, the peak memory).
+  std::vector<TetQuality>().swap(r.quality);
   std::size_t calls = 0, tried = 0;
   const auto report = [&] {
     Progress p;
@@ -918,10 +922,13 @@ bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOption
     calls = 0;
     return report();
   };
-  Improver im(r, opt.rho0, opt.max_size, keep_going);
-  im.set_classes(&balls, opt.theta_deg);
-  const bool done = im.run();
-  im.finish();
+  bool done = false;
+  {  // the Improver's arrays are freed before the classes are made
+    Improver im(r, opt.rho0, opt.max_size, keep_going);
+    im.set_classes(&balls, opt.theta_deg);
+    done = im.run();
+    im.finish();
+  }
   if (!done) return false;
   // The classes again, on the improved mesh (h5's classify_tets).
   if (!classify_tets(r, balls, opt, keep_going)) return false;

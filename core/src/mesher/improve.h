@@ -268,7 +268,8 @@ class Improver {
 /// thresholds) and the smallest dihedral angle after, in r.improve. Calls
 /// `progress` (phase "improve") at its start and after every kImprovePoll
 /// operations tried; false when it returned false (the run is cancelled: r's
-/// mesh is then valid but its classes are not recomputed).
+/// mesh is then valid but its classes are not recomputed and r.quality is
+/// empty: it is freed while the phase works).
 bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOptions& opt,
                    const ProgressCallback& progress);
 /// Operations (tets or vertices tried) between two progress calls.

@@ -4,6 +4,7 @@
 #include "wqmesh/mesher.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "mesher/classify.h"
 #include "mesher/improve.h"
 #include "mesher/mesher.h"
 #include "scaling.h"
@@ -126,6 +128,18 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     run("pump", [&] { m.pump(); });
   }
   MeshResult r;
+  // What the statistics need of V, taken now: V is final, and when a mesh
+  // is extracted the mesher's large pieces (V's triangulation, the
+  // subcomplex, the queues) are freed before the per-tet measures, the
+  // classes and the improvement phase are built (issue 15: the peak memory
+  // was the extraction's result beside the triangulation). The protecting
+  // balls are kept (a copy: the classes and the phase read them).
+  const mesher::ProtectingBalls balls = m.balls();
+  const std::size_t all_vertices = m.vertices().size();
+  const std::array<std::size_t, 8> rule_points = m.inserter().rule_count();
+  std::vector<Point3> floor_points;
+  if (options.measure_floor)
+    for (std::size_t v = 0; v < all_vertices; ++v) floor_points.push_back(m.triangulation().point(static_cast<int>(v)));
   if (m.meter().stop_reason() == "cancelled") {
     // Beyond the paper (issue 10, stops that reach every step): a cancelled
     // run returns at once, without extracting its partial mesh (extraction
@@ -137,7 +151,9 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     r.protecting_balls = m.balls().all();
   } else {
     const auto t0 = clock::now();
-    r = m.extract();
+    r = m.extract_mesh();
+    m.release();
+    mesher::classify_tets(r, balls, options);
     PhaseStats s;
     s.name = "extract";
     s.time_s = std::chrono::duration<double>(clock::now() - t0).count();
@@ -147,11 +163,11 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
     if (options.improve && r.stopped.empty() && r.conforming) {
       const auto i0 = clock::now();
       const std::size_t before = r.mesh.vertices.size();
-      if (!mesher::improve_phase(r, m.balls(), options, progress)) {
+      if (!mesher::improve_phase(r, balls, options, progress)) {
         r = MeshResult();
         r.stopped = "cancelled";
         r.stop_message = "cancelled by the caller in the improvement phase; no mesh is returned";
-        r.protecting_balls = m.balls().all();
+        r.protecting_balls = balls.all();
       }
       PhaseStats p;
       p.name = "improve";
@@ -170,18 +186,16 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   }
   r.input_points = plc.vertices.size();
   r.sharp_elements = analysis.sharp_vertices.size() + analysis.sharp_edges.size();
-  r.points_inserted = m.vertices().size() - domain.p.vertices.size() + r.improve.inserted;
+  r.points_inserted = all_vertices - domain.p.vertices.size() + r.improve.inserted;
   r.slivers_before_pump = options.pump ? slivers_qmesh : r.improve.ran ? r.improve.slivers_before : r.slivers;
   r.pumped_vertices = m.pumped_vertices();
-  r.rule_points = m.inserter().rule_count();
+  r.rule_points = rule_points;
   r.caps_reached = m.meter().caps_reached();
-  r.all_vertices = m.vertices().size() + r.improve.inserted;
+  r.all_vertices = all_vertices + r.improve.inserted;
   if (options.measure_floor) {
-    std::vector<Point3> points(m.vertices().size());
-    for (std::size_t v = 0; v < points.size(); ++v) points[v] = m.triangulation().point(static_cast<int>(v));
     const auto f0 = clock::now();
     RegularTriangulation floor;
-    floor.insert_all(points);
+    floor.insert_all(floor_points);
     r.delaunay_floor_s = std::chrono::duration<double>(clock::now() - f0).count();
   }
   return r;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "mesher/extract.h"
 #include "mesher/phases.h"
@@ -13,31 +14,43 @@
 
 namespace wqmesh::mesher {
 
+Mesher::Pieces::Pieces(const Domain& domain, const MeshOptions& options, std::vector<MVertex>& vertices,
+                       const ProtectingBalls& balls, WorkMeter& meter)
+    : sub(domain, tri, vertices, balls),
+      queues(domain, tri, sub, meter),
+      ins(options, tri, vertices, sub, queues, meter) {}
+
 Mesher::Mesher(const Domain& domain, const MeshOptions& options, const ProgressCallback& progress)
     : dom_(domain),
       opt_(options),
       balls_(domain.box),
       meter_(options, progress, verts_),
-      sub_(domain, tri_, verts_, balls_),
-      queues_(domain, tri_, sub_, meter_),
-      ins_(options, tri_, verts_, sub_, queues_, meter_) {}
+      pieces_(std::make_unique<Pieces>(domain, options, verts_, balls_, meter_)) {}
+
+Mesher::Pieces& Mesher::live() const {
+  if (!pieces_) throw std::logic_error("internal error: the mesher's pieces were used after release()");
+  return *pieces_;
+}
 
 void Mesher::initialize() {
   meter_.set_phase(Phase::initialize);
-  Initialize(dom_, sub_, queues_, ins_, meter_).run();
+  Pieces& p = live();
+  Initialize(dom_, p.sub, p.queues, p.ins, meter_).run();
 }
 
 void Mesher::conform() {
   meter_.set_phase(Phase::conform);
-  Conform(dom_, opt_, tri_, sub_, queues_, ins_, meter_, balls_).run();
+  Pieces& p = live();
+  Conform(dom_, opt_, p.tri, p.sub, p.queues, p.ins, meter_, balls_).run();
 }
 
 void Mesher::refine() {
   meter_.set_phase(Phase::refine);
-  Refine(dom_, opt_, tri_, verts_, sub_, balls_, queues_, ins_, meter_).run();
+  Pieces& p = live();
+  Refine(dom_, opt_, p.tri, verts_, p.sub, balls_, p.queues, p.ins, meter_).run();
 }
 
-Pump Mesher::make_pump() { return Pump(dom_, opt_, tri_, verts_, sub_, balls_, meter_); }
+Pump Mesher::make_pump() { return Pump(dom_, opt_, live().tri, verts_, live().sub, balls_, meter_); }
 
 void Mesher::pump() {
   meter_.set_phase(Phase::pump);
@@ -52,12 +65,24 @@ void Mesher::pump() {
   pumped_vertices_ = p.pumped_vertices();
 }
 
-MeshResult Mesher::extract(bool stoppable) {
-  return Extract(dom_, opt_, tri_, verts_, sub_, balls_, nn_, meter_).run(stoppable);
+MeshResult Mesher::extract() { return Extract(dom_, opt_, live().tri, verts_, live().sub, balls_, nn_, meter_).run(); }
+
+MeshResult Mesher::extract_mesh() {
+  return Extract(dom_, opt_, live().tri, verts_, live().sub, balls_, nn_, meter_).mesh();
+}
+
+void Mesher::release() {
+  pieces_.reset();
+  verts_ = {};
+  nn_ = {};
+  sliver_scan_ = {};
+  sliver_scan_labels_ = {};
+  sliver_scan_vertices_ = -1;
+  released_ = true;
 }
 
 std::size_t Mesher::count_qmesh_slivers() {
-  const std::size_t n = Extract(dom_, opt_, tri_, verts_, sub_, balls_, nn_, meter_)
+  const std::size_t n = Extract(dom_, opt_, live().tri, verts_, live().sub, balls_, nn_, meter_)
                             .count_qmesh_slivers(sliver_scan_, sliver_scan_labels_);
   sliver_scan_vertices_ = sliver_scan_.cells.empty() ? -1 : static_cast<long>(verts_.size());
   return n;

@@ -30,6 +30,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "mesher/domain.h"
@@ -98,7 +99,20 @@ class Mesher {
   void refine();      ///< refine.cpp, rules 4-7
   void pump();        ///< pump.cpp
   /// extract.cpp (Extract::run): interior tets, classes, statistics.
-  MeshResult extract(bool stoppable = false);
+  MeshResult extract();
+  /// extract.cpp (Extract::mesh): the interior tets without their measures
+  /// and classes (classify_tets adds them), nothing in it referring to the
+  /// pieces, so that release() may follow.
+  MeshResult extract_mesh();
+  /// Frees the large pieces once the mesh is extracted (issue 15, the peak
+  /// memory): V's triangulation, the subcomplex (subsegments, the facets'
+  /// planar triangulations), the queues, N(v), the count's scan, and V's
+  /// MVertex list; the protecting balls, the meter and the inserter's counts
+  /// stay. No phase and no extraction may run after it. Tests check
+  /// released().
+  void release();
+  /// Whether release() ran: V's triangulation then holds no vertex.
+  bool released() const { return released_; }
   /// The inside slivers extract() would count now (QMESH's, before PUMP),
   /// without building the mesh (Extract::count_qmesh_slivers); its scan is
   /// kept for the next pump() of the same triangulation.
@@ -106,33 +120,44 @@ class Mesher {
   /// PUMP over this run's pieces (pump() runs it; tests drive it by hand).
   Pump make_pump();
 
-  // ---- the pieces ----
+  // ---- the pieces (all but domain, options, balls and meter: not after release()) ----
   const Domain& domain() const { return dom_; }
   const MeshOptions& options() const { return opt_; }
-  const RegularTriangulation& triangulation() const { return tri_; }
+  const RegularTriangulation& triangulation() const { return live().tri; }
   /// V: where each vertex lies, by id.
   const std::vector<MVertex>& vertices() const { return verts_; }
-  const Subcomplex& subcomplex() const { return sub_; }
+  const Subcomplex& subcomplex() const { return live().sub; }
   const ProtectingBalls& balls() const { return balls_; }
   WorkMeter& meter() { return meter_; }
   const WorkMeter& meter() const { return meter_; }
-  Inserter& inserter() { return ins_; }
-  const Inserter& inserter() const { return ins_; }
+  Inserter& inserter() { return live().ins; }
+  const Inserter& inserter() const { return live().ins; }
   /// The vertices PUMP gave a weight.
   std::size_t pumped_vertices() const { return pumped_vertices_; }
 
  private:
+  /// The pieces release() frees together (each refers to those before it
+  /// and to V's MVertex list, the balls and the meter, which stay).
+  struct Pieces {
+    Pieces(const Domain& domain, const MeshOptions& options, std::vector<MVertex>& vertices,
+           const ProtectingBalls& balls, WorkMeter& meter);
+    RegularTriangulation tri;
+    Subcomplex sub;
+    Queues queues;
+    Inserter ins;
+  };
+  /// The pieces; throws std::logic_error after release().
+  Pieces& live() const;
+
   const Domain& dom_;
   const MeshOptions& opt_;
-  RegularTriangulation tri_;
   std::vector<MVertex> verts_;
   ProtectingBalls balls_;
   WorkMeter meter_;
-  Subcomplex sub_;
-  Queues queues_;
-  Inserter ins_;
+  std::unique_ptr<Pieces> pieces_;
   std::vector<double> nn_;  ///< N(v) at the end of REFINE
   std::size_t pumped_vertices_ = 0;
+  bool released_ = false;
   /// count_qmesh_slivers' scan for pump(), made at this many vertices (-1:
   /// none).
   RegularTriangulation::CellGraph sliver_scan_;

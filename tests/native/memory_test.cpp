@@ -1,0 +1,137 @@
+// The peak memory of a run (issue 15, item 3): the mesher's large pieces (V's
+// triangulation, the subcomplex, the queues) are freed once the mesh is
+// extracted, before the per-tet measures, the classes and the improvement
+// phase are built; the extraction split in two (the mesh, then
+// classify_tets) gives the same result as the whole extraction.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <gtest/gtest.h>
+#include <malloc.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh_invariants.h"
+#include "mesher/classify.h"
+#include "mesher/extract.h"
+#include "mesher/mesher.h"
+#include "wqmesh/mesher.h"
+
+namespace wqmesh {
+namespace {
+
+using invariants::Input;
+using invariants::load;
+
+const std::string kSpike = std::string(WQMESH_EXAMPLE_MODELS) + "/spike.off";
+
+// The heap glibc has handed out (mmapped blocks included).
+std::size_t heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+// Whether heap_in_use sees this process's allocations (not under a
+// sanitizer's allocator, which glibc's counters do not see).
+bool heap_is_measurable() {
+  const std::size_t before = heap_in_use();
+  std::vector<char> block(8 << 20, 1);
+  const std::size_t during = heap_in_use();
+  return block[12345] == 1 && during >= before + (8u << 20);
+}
+
+// Extract::mesh then classify_tets, with the mesher released in between, is
+// the whole extraction (Extract::run), field by field; after release() the
+// pieces are refused and the balls stay.
+TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
+  for (const std::string name : {"spike.off", "slit.off", "edge_facet.off"}) {
+    SCOPED_TRACE(name);
+    const Input in = load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
+    const mesher::Domain dom(in.plc, in.analysis);
+    MeshOptions o;
+    ProgressCallback none;
+    auto run_phases = [&](mesher::Mesher& m) {
+      m.initialize();
+      m.conform();
+      m.refine();
+      m.count_qmesh_slivers();
+      m.pump();
+    };
+    mesher::Mesher whole(dom, o, none);
+    run_phases(whole);
+    const MeshResult expected = whole.extract();
+
+    mesher::Mesher m(dom, o, none);
+    run_phases(m);
+    MeshResult r = m.extract_mesh();
+    EXPECT_TRUE(r.quality.empty());
+    EXPECT_TRUE(r.tet_class.empty());
+    const mesher::ProtectingBalls balls = m.balls();
+    EXPECT_FALSE(m.released());
+    m.release();
+    EXPECT_TRUE(m.released());
+    EXPECT_THROW(m.triangulation(), std::logic_error);
+    EXPECT_THROW(m.subcomplex(), std::logic_error);
+    EXPECT_THROW(m.extract_mesh(), std::logic_error);
+    EXPECT_TRUE(m.vertices().empty());
+    EXPECT_EQ(m.balls().all().size(), expected.protecting_balls.size());
+    ASSERT_TRUE(mesher::classify_tets(r, balls, o));
+
+    EXPECT_EQ(r.mesh.vertices, expected.mesh.vertices);
+    EXPECT_EQ(r.mesh.weights, expected.mesh.weights);
+    EXPECT_EQ(r.mesh.tets, expected.mesh.tets);
+    EXPECT_EQ(r.mesh.boundary, expected.mesh.boundary);
+    EXPECT_EQ(r.mesh.boundary_facet, expected.mesh.boundary_facet);
+    EXPECT_EQ(r.nearest_neighbour, expected.nearest_neighbour);
+    EXPECT_EQ(r.input_vertex, expected.input_vertex);
+    EXPECT_EQ(r.orthoradius_edge, expected.orthoradius_edge);
+    EXPECT_EQ(r.tet_class, expected.tet_class);
+    ASSERT_EQ(r.quality.size(), expected.quality.size());
+    for (std::size_t t = 0; t < r.quality.size(); ++t) {
+      EXPECT_EQ(r.quality[t].min_dihedral_deg, expected.quality[t].min_dihedral_deg) << "tet " << t;
+      EXPECT_EQ(r.quality[t].radius_edge, expected.quality[t].radius_edge) << "tet " << t;
+      EXPECT_EQ(r.quality[t].volume, expected.quality[t].volume) << "tet " << t;
+    }
+    EXPECT_EQ(r.conforming, expected.conforming);
+    EXPECT_EQ(r.stopped, expected.stopped);
+    EXPECT_EQ(r.slivers, expected.slivers);
+    EXPECT_EQ(r.skinny, expected.skinny);
+    EXPECT_EQ(r.near_small_angle, expected.near_small_angle);
+    EXPECT_EQ(r.violations, expected.violations);
+    EXPECT_EQ(r.orthoradius_skinny, expected.orthoradius_skinny);
+  }
+}
+
+// mesh_polyhedron frees V's triangulation and the subcomplex before the
+// improvement phase, and the phase frees the stale per-tet measures before
+// it builds its own arrays (improve.h): when the phase reports its start,
+// the process holds less than it does once the run has returned (the
+// finished result alone: the mesh, about 300 bytes per tet of measures and
+// classes). Holding the triangulation (about 230 bytes per tet) and the
+// subcomplex to the end, as before, gives more there than the whole result.
+TEST(Memory, TheTriangulationIsFreedBeforeTheImprovementPhase) {
+  if (!heap_is_measurable()) GTEST_SKIP() << "glibc's heap counters do not see this allocator (a sanitizer build)";
+  const Input in = load(kSpike);
+  MeshOptions o;
+  o.max_size = 0.1;  // about 11,000 tets: the run's structures dwarf the rest of the process
+  std::size_t at_improve = 0;
+  std::string last;
+  const ProgressCallback watch = [&](const Progress& p) {
+    if (p.phase == "improve" && last != "improve") at_improve = heap_in_use();
+    last = p.phase;
+    return true;
+  };
+  const std::size_t before = heap_in_use();
+  const MeshResult r = mesh_polyhedron(in.plc, in.analysis, o, watch);
+  const std::size_t after = heap_in_use();
+  ASSERT_TRUE(r.stopped.empty()) << r.stop_message;
+  ASSERT_GT(r.mesh.tets.size(), 5000u);
+  ASSERT_EQ(r.quality.size(), r.mesh.tets.size());
+  ASSERT_GT(at_improve, 0u) << "no progress call at the improvement phase's start";
+  EXPECT_LT(at_improve - before, after - before)
+      << "at the improvement phase's start the run held " << at_improve - before << " bytes, the finished result "
+      << after - before << ": the mesher's pieces or the old measures were not freed";
+}
+
+}  // namespace
+}  // namespace wqmesh
