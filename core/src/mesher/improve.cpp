@@ -96,24 +96,22 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
     if (r.input_vertex[v] >= 0) fixed_[v] = 1;
   // Face adjacency: each oriented face meets its reverse in the neighbour.
   struct Face {
-    Tri key;
+    Tri key;  ///< the face's vertices, sorted (unoriented)
     int tet, k;
+  };
+  auto unoriented = [](Tri f) {
+    std::sort(f.begin(), f.end());
+    return f;
   };
   std::vector<Face> faces;
   faces.reserve(4 * tets_.size() + bnd_.size());
   for (std::size_t t = 0; t < tets_.size(); ++t)
     for (int k = 0; k < 4; ++k) {
-      faces.push_back({outward_face(tets_[t], k), int(t), k});
+      faces.push_back({unoriented(outward_face(tets_[t], k)), int(t), k});
       vtet_[tets_[t][k]] = int(t);
     }
-  // A boundary triangle is outward: the tet's outward face equals it.
-  for (std::size_t b = 0; b < bnd_.size(); ++b) faces.push_back({reversed(bnd_[b]), -1 - int(b), -1});
-  auto unoriented = [](Tri f) {
-    std::sort(f.begin(), f.end());
-    return f;
-  };
-  std::stable_sort(faces.begin(), faces.end(),
-                   [&](const Face& a, const Face& b) { return unoriented(a.key) < unoriented(b.key); });
+  for (std::size_t b = 0; b < bnd_.size(); ++b) faces.push_back({unoriented(bnd_[b]), -1 - int(b), -1});
+  std::stable_sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
   // A face with neither a neighbour nor a boundary triangle (a mesh that is
   // not closed) gets the code -1 - bnd_.size(), which names no triangle: it
   // is never flipped and its vertices never move.
@@ -121,7 +119,7 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
   nb_.assign(tets_.size(), {{kOpen, kOpen, kOpen, kOpen}});
   for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
     const Face &a = faces[i], &b = faces[i + 1];
-    if (unoriented(a.key) != unoriented(b.key)) continue;
+    if (a.key != b.key) continue;
     if (a.tet >= 0) nb_[a.tet][a.k] = b.tet;
     if (b.tet >= 0) nb_[b.tet][b.k] = a.tet;
     ++i;
@@ -556,9 +554,19 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     for (int k = 0; k < 4; ++k) p[k] = T[k] == v ? x : P_[T[k]];
     return min_sine(p[0], p[1], p[2], p[3]);
   };
+  // q[i]: tet i's quality at P_[v]; order: the tets by it, worst first.
+  std::vector<double> q(tets.size()), qx(tets.size());
+  std::vector<int> order(tets.size());
+  for (std::size_t i = 0; i < tets.size(); ++i) q[i] = quality_at(tets[i], P_[v]);
+  // The worst at x if it beats `current` (qx then holds every tet's
+  // quality), else some value <= current: the scan stops at the first tet
+  // that does not beat it, worst first (std::min skips a NaN, as before).
   auto worst_at = [&](const Point3& x) {
     double w = HUGE_VAL;
-    for (const Tet& T : tets) w = std::min(w, quality_at(T, x));
+    for (int i : order) {
+      w = std::min(w, qx[i] = quality_at(tets[i], x));
+      if (w <= current) return w;
+    }
     return w;
   };
   for (int step = 0; step < kSmoothSteps; ++step) {
@@ -566,8 +574,9 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     // direction is the sum of their unit gradients (nonsmooth ascent).
     const double h = 1e-7 * lmin;
     Point3 dir{{0, 0, 0}};
-    for (const Tet& T : tets) {
-      if (quality_at(T, P_[v]) > current + 1e-3) continue;
+    for (std::size_t i = 0; i < tets.size(); ++i) {
+      if (q[i] > current + 1e-3) continue;
+      const Tet& T = tets[i];
       Point3 g;
       for (int c = 0; c < 3; ++c) {
         g[c] = 0;  // an exact 0: the coordinate stays (boundary slides)
@@ -581,6 +590,11 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     }
     if (!(norm(dir) > 0)) break;
     dir = geometry::unit(dir);
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double qa = std::isnan(q[a]) ? HUGE_VAL : q[a], qb = std::isnan(q[b]) ? HUGE_VAL : q[b];
+      return qa < qb || (qa == qb && a < b);
+    });
     bool better = false;
     for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
       const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
@@ -593,6 +607,7 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
         continue;
       }
       current = w;
+      q.swap(qx);
       better = true;
       break;
     }
@@ -628,13 +643,20 @@ bool Improver::smooth(int v) {
   lmin = std::sqrt(lmin);
   if (!(lmin > 0)) return false;
   // Each step: every tet of the star positive (exact), within max_size, and
-  // no more violations than before.
+  // no more violations than before. The answer does not depend on the order
+  // of the tets, so the one that failed the last call is tried first.
+  std::size_t hard = 0;
   const auto valid = [&] {
     int left = violations;
-    for (const Tet& T : tets)
+    for (std::size_t n = 0; n < tets.size(); ++n) {
+      const std::size_t i = n == 0 ? hard : n <= hard ? n - 1 : n;
+      const Tet& T = tets[i];
       if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) || skinny_level(T) > level ||
-          (left -= violation(T)) < 0)
+          (left -= violation(T)) < 0) {
+        hard = i;
         return false;
+      }
+    }
     return true;
   };
   if (!(ascend(v, tets, worst_old, lmin, valid, axes) > worst_old)) return false;
