@@ -460,6 +460,10 @@ export interface MeshStats {
     inserted: number;
     /** Steiner vertices removed by edge contraction. */
     contractions: number;
+    /** Of `smoothed`, moves of boundary vertices (each along a coordinate axis its facets run along). */
+    slid: number;
+    /** Of `inserted`, points inserted on a facet (with the facet's coordinate off its axes copied exactly). */
+    inserted_on_boundary: number;
     min_dihedral_before: number;
     min_dihedral_after: number;
     slivers_before: number;

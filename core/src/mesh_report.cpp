@@ -82,6 +82,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("flips23", im.flips23).field("flips32", im.flips32).field("flips44", im.flips44);
   j.field("flips22", im.flips22).field("edge_removals", im.edge_removals);
   j.field("smoothed", im.smoothed).field("inserted", im.inserted).field("contractions", im.contractions);
+  j.field("slid", im.slid).field("inserted_on_boundary", im.inserted_on_boundary);
   j.field("min_dihedral_before", im.min_dihedral_before).field("min_dihedral_after", im.min_dihedral_after);
   j.field("slivers_before", im.slivers_before).field("skinny_before", im.skinny_before);
   j.field("near_small_angle_before", im.near_small_angle_before).field("violations_before", im.violations_before);

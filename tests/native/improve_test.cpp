@@ -373,6 +373,9 @@ TEST(ImproveBoundary, AVertexOfASlantedFacetWithoutAnAxisNeverMoves) {
   Improver im(p.r, 2.2, 0);
   EXPECT_EQ(im.slide_axes(5), 0);
   EXPECT_FALSE(im.smooth(5));
+  // Nor is a point inserted on it (no point off the input vertices is known
+  // to lie on it exactly).
+  for (int t = 0; t < 4; ++t) EXPECT_FALSE(im.insert_boundary(t));
   ASSERT_TRUE(im.run());
   im.finish();
   EXPECT_EQ(p.r.mesh.vertices[5], v);
@@ -382,6 +385,21 @@ TEST(ImproveBoundary, AVertexOfASlantedFacetWithoutAnAxisNeverMoves) {
   Improver iq(q.r, 2.2, 0);
   EXPECT_EQ(iq.slide_axes(5), 0);
   EXPECT_FALSE(iq.smooth(5));
+}
+
+TEST(ImproveBoundary, AMeshThatIsNotClosedGetsNoSlideAndNoPointOnAFacet) {
+  Config p = pyramid_with_input_corners({{0.6, 0.5, 0}});
+  // Drop one side triangle: its face has neither a neighbour nor a boundary
+  // triangle.
+  for (std::size_t i = 0; i < p.r.mesh.boundary.size(); ++i)
+    if (p.r.mesh.boundary_facet[i] != 0) {
+      p.r.mesh.boundary.erase(p.r.mesh.boundary.begin() + long(i));
+      p.r.mesh.boundary_facet.erase(p.r.mesh.boundary_facet.begin() + long(i));
+      break;
+    }
+  Improver im(p.r, 2.2, 0);
+  EXPECT_EQ(im.slide_axes(5), 0);
+  for (int t = 0; t < 4; ++t) EXPECT_FALSE(im.insert_boundary(t));
 }
 
 TEST(ImproveBoundary, AnEdgeVertexSlidesAlongItsAxisAlignedInputEdge) {
@@ -576,6 +594,7 @@ std::vector<std::string> models() {
 TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
   const auto files = models();
   ASSERT_FALSE(files.empty());
+  std::size_t inserted_on_boundary = 0;
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
     const invariants::Input in = invariants::load(f);
@@ -594,9 +613,10 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
     // vertices first) and boundary triangles.
     ASSERT_EQ(r.mesh.vertices.size() + r.improve.contractions, plain.mesh.vertices.size() + r.improve.inserted);
     // Input vertices never move; a boundary vertex only slides, staying on
-    // each of its facets' planes exactly as before: n . (p - a) for the
-    // plane of three input vertices a, b, c of the facet, in exact
-    // arithmetic, is the same before and after.
+    // each of its facets' planes exactly as before, and a point inserted on
+    // a facet lies on its plane exactly as a vertex of the facet did: n . (p
+    // - a) for the plane of three input vertices a, b, c of the facet, in
+    // exact arithmetic.
     for (std::size_t v = 0; v < in.plc.vertices.size(); ++v) EXPECT_EQ(r.mesh.vertices[v], plain.mesh.vertices[v]);
     const auto plane = [&](int f) {
       const auto& loop = in.plc.facets[f].loops[0];
@@ -610,50 +630,67 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
       EXPECT_LT(k, loop.size());
       return std::array<Point3, 3>{{a, in.plc.vertices[loop[j]], in.plc.vertices[loop[std::min(k, loop.size() - 1)]]}};
     };
-    std::map<int, std::set<int>> facets_of;
-    for (std::size_t b = 0; b < plain.mesh.boundary.size(); ++b)
-      for (int v : plain.mesh.boundary[b]) facets_of[v].insert(plain.mesh.boundary_facet[b]);
-    std::size_t moved = 0;
+    const auto residual_of = [&](int f, const Point3& p) {
+      const auto abc = plane(f);
+      return residual(abc[0], abc[1], abc[2], p);
+    };
+    const auto facets_of = [](const TetMesh& m) {
+      std::map<int, std::set<int>> out;
+      for (std::size_t b = 0; b < m.boundary.size(); ++b)
+        for (int v : m.boundary[b]) out[v].insert(m.boundary_facet[b]);
+      return out;
+    };
+    const auto before = facets_of(plain.mesh), after = facets_of(r.mesh);
+    // Per facet, the residuals of its vertices before the phase.
+    std::map<int, std::set<CGAL::MP_Float>> was;
+    for (const auto& [v, fs] : before)
+      for (int g : fs) was[g].insert(residual_of(g, plain.mesh.vertices[v]));
+    std::size_t moved = 0, added = 0;
     if (r.improve.contractions == 0) {
-      for (const auto& [v, fs] : facets_of) {
-        if (r.mesh.vertices[v] == plain.mesh.vertices[v]) continue;
-        ++moved;
-        for (int f : fs) {
-          const auto abc = plane(f);
-          EXPECT_TRUE(residual(abc[0], abc[1], abc[2], r.mesh.vertices[v]) ==
-                      residual(abc[0], abc[1], abc[2], plain.mesh.vertices[v]))
-              << "boundary vertex " << v << " left the plane of facet " << f;
+      for (const auto& [v, fs] : after) {
+        const bool old = v < int(plain.mesh.vertices.size());
+        if (old && r.mesh.vertices[v] == plain.mesh.vertices[v]) continue;
+        ++(old ? moved : added);
+        if (old) EXPECT_EQ(before.at(v), fs) << "boundary vertex " << v << " changed facets";
+        for (int g : fs) {
+          const CGAL::MP_Float now = residual_of(g, r.mesh.vertices[v]);
+          if (old)
+            EXPECT_TRUE(now == residual_of(g, plain.mesh.vertices[v]))
+                << "boundary vertex " << v << " left the plane of facet " << g;
+          else
+            EXPECT_TRUE(was[g].count(now))
+                << "new boundary vertex " << v << " is not on facet " << g << " as exactly as its vertices were";
         }
       }
-      EXPECT_EQ(r.mesh.boundary.size(), plain.mesh.boundary.size());
-      EXPECT_EQ(r.mesh.boundary_facet, plain.mesh.boundary_facet);
+      EXPECT_EQ(added, r.improve.inserted_on_boundary);
+      // Two boundary triangles more per point on a facet; the old ones keep
+      // their indices and facets.
+      ASSERT_EQ(r.mesh.boundary.size(), plain.mesh.boundary.size() + 2 * r.improve.inserted_on_boundary);
+      EXPECT_TRUE(std::equal(plain.mesh.boundary_facet.begin(), plain.mesh.boundary_facet.end(),
+                             r.mesh.boundary_facet.begin()));
     } else {
       // The indices moved: each boundary vertex's residual from each of its
       // facets' planes is one that a boundary vertex of that facet had.
-      std::map<int, std::set<CGAL::MP_Float>> was;
-      for (const auto& [v, fs] : facets_of)
-        for (int f : fs) {
-          const auto abc = plane(f);
-          was[f].insert(residual(abc[0], abc[1], abc[2], plain.mesh.vertices[v]));
-        }
       for (std::size_t b = 0; b < r.mesh.boundary.size(); ++b)
         for (int v : r.mesh.boundary[b]) {
           const int f = r.mesh.boundary_facet[b];
-          const auto abc = plane(f);
-          EXPECT_TRUE(was[f].count(residual(abc[0], abc[1], abc[2], r.mesh.vertices[v])))
+          EXPECT_TRUE(was[f].count(residual_of(f, r.mesh.vertices[v])))
               << "boundary vertex " << v << " left the plane of facet " << f;
         }
-      EXPECT_LT(r.mesh.boundary.size(), plain.mesh.boundary.size());
+      EXPECT_LE(r.mesh.boundary.size(), plain.mesh.boundary.size() + 2 * r.improve.inserted_on_boundary);
     }
+    inserted_on_boundary += r.improve.inserted_on_boundary;
     std::printf(
         "[ improve  ] %s: min dihedral %.3g -> %.3g deg, tets %zu -> %zu; 2-3 %zu, 3-2 %zu, 4-4 %zu, "
-        "2-2 %zu, edge removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu, contractions %zu, "
-        "passes %d\n",
+        "2-2 %zu, edge removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu (on facets %zu), "
+        "contractions %zu, passes %d\n",
         fs::path(f).filename().c_str(), r.improve.min_dihedral_before, r.improve.min_dihedral_after,
         plain.mesh.tets.size(), r.mesh.tets.size(), r.improve.flips23, r.improve.flips32, r.improve.flips44,
         r.improve.flips22, r.improve.edge_removals, r.improve.smoothed, moved, r.improve.inserted,
-        r.improve.contractions, r.improve.passes);
+        r.improve.inserted_on_boundary, r.improve.contractions, r.improve.passes);
   }
+  // thin_wedge.off (an example model, always there) gets points on facets.
+  EXPECT_GT(inserted_on_boundary, 0u);
 }
 
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {

@@ -127,6 +127,9 @@ struct ImproveStats {
   int passes = 0;
   std::size_t flips23 = 0, flips32 = 0, flips44 = 0, flips22 = 0, edge_removals = 0, smoothed = 0, inserted = 0;
   std::size_t contractions = 0;  ///< vertices removed by edge contraction
+  /// Of `smoothed`, the moves of boundary vertices (slides along an axis of
+  /// their facets); of `inserted`, the points inserted on a facet.
+  std::size_t slid = 0, inserted_on_boundary = 0;
   double min_dihedral_before = 0, min_dihedral_after = 0;
   std::size_t slivers_before = 0, skinny_before = 0, near_small_angle_before = 0, violations_before = 0;
   std::size_t tets_before = 0;  ///< the tets of the mesh before it

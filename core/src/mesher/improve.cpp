@@ -339,6 +339,10 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
         else
           o.key = rotated(tri);
       }
+  // A boundary triangle with a new index (insert_boundary's fan) is an outer
+  // face of its own.
+  for (const auto& [b, tri] : boundary)
+    if (b >= int(bnd_.size())) outer.push_back({rotated(tri), -1 - b, -1, false});
   // Every vertex of the old set stays in the new one (but `vanishing`).
   for (int t : old)
     for (int v : tets_[t]) {
@@ -384,7 +388,10 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
   for (const Outer& o : outer)
     if (!o.used) return false;
   // Commit.
-  for (const auto& [b, tri] : boundary) bnd_[b] = tri;
+  for (const auto& [b, tri] : boundary) {
+    if (b >= int(bnd_.size())) bnd_.resize(b + 1);
+    bnd_[b] = tri;
+  }
   // free_slots_ is a min-heap: a new tet takes the smallest free slot.
   for (int t : old) {
     tets_[t][0] = -1;
@@ -667,6 +674,7 @@ bool Improver::smooth(int v) {
   ++clock_;
   for (int t : S) touch(tets_[t]);
   ++st_.smoothed;
+  st_.slid += fixed_[v] != 0;
   return true;
 }
 
@@ -857,7 +865,7 @@ bool Improver::run() {
     for (int t : bad_tets(insert_below)) {
       if (!poll()) break;
       if (!alive(t) || !(q_[t] < insert_below) || !fresh_since(insert_tried_[t], tets_[t])) continue;
-      if (!insert(t)) {
+      if (!insert(t) && !insert_boundary(t)) {
         insert_tried_[t] = clock_;
         continue;
       }

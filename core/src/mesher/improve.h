@@ -209,12 +209,39 @@ class Improver {
   /// The axes along which smooth() may move v: all three for a free vertex,
   /// slide_axes(v) for one of the boundary.
   int movable_axes(int v) const;
+  /// Inserts a Steiner point p on a boundary triangle of t (candidates: the
+  /// triangle's circumcenter, centroid and edge midpoints, each with the
+  /// coordinates off its facet's axes copied from a point of the facet, so
+  /// that p lies on the facet's plane exactly as that point does: an input
+  /// corner for an axis-aligned facet, a vertex of the triangle otherwise).
+  /// The cavity: the tets whose circumsphere holds p, grown from t until
+  /// every outer face off the facet sees p; the facet's triangles on the
+  /// cavity's surface (a disk without inner vertices) become the fan from p
+  /// over their outline. Each candidate is first slid by ascend() along the
+  /// facet's axes; the best accepted one is inserted (accept(), no more
+  /// tets under kInsertBelowDeg than in the cavity, the tet budget as
+  /// insert()). False on a mesh that is not closed.
+  bool insert_boundary(int t);
 
  private:
-  /// Computes slide_ (from bnd_, the mesh's boundary_facet and the input
-  /// vertices); called by the constructor.
+  using Tri3 = std::array<int, 3>;
+  /// Computes slide_, facet_axes_, facet_corner_ and closed_ (from bnd_, the
+  /// mesh's boundary_facet and the input vertices); called by the constructor.
   void init_slides();
+  /// Whether `fresh` holds more tets under sin(kInsertBelowDeg) than the
+  /// tets `old` (beyond accept(): a point on a facet near a small input angle
+  /// would otherwise multiply the tets the angle keeps bad).
+  bool more_bad_tets(const std::vector<int>& old, const std::vector<Tet>& fresh) const;
+  /// insert_boundary's cavity for p on boundary triangle b (facet f) of t:
+  /// the old tets, the new ones (p has index P_.size()) and the fan of
+  /// boundary triangles (index, triangle; indices from bnd_.size() are new);
+  /// false when no cavity is star-shaped from p within kMaxCavity tets.
+  bool boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
+                       std::vector<std::pair<int, Tri3>>& fan) const;
   std::vector<std::uint8_t> slide_;
+  /// Per facet: the axes its plane runs along, and one input corner (-1: none).
+  std::vector<int> facet_axes_, facet_corner_;
+  bool closed_ = false;  ///< no face without a neighbour or a boundary triangle
 
   // ---- Vertex removal by edge contraction (improve_contract.cpp; beyond
   // the paper, after Stellar's vertex removal by edge contraction). Edge

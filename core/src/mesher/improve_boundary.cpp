@@ -5,8 +5,10 @@
 // operations").
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
+#include <cmath>
 
 #include "cgal_types.h"
+#include "geometry.h"
 #include "mesher/improve.h"
 
 namespace wqmesh::mesher {
@@ -14,6 +16,16 @@ namespace wqmesh::mesher {
 namespace {
 
 using Point2 = cgal::K::Point_2;
+using Tri3 = std::array<int, 3>;
+
+// The faces of a positively oriented tet, outward, face k opposite vertex k
+// (improve.cpp's convention).
+constexpr int kOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+Tri3 outward(const std::array<int, 4>& t, int k) { return {{t[kOut[k][0]], t[kOut[k][1]], t[kOut[k][2]]}}; }
+
+bool positive(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return CGAL::orientation(cgal::to_cgal(a), cgal::to_cgal(b), cgal::to_cgal(c), cgal::to_cgal(d)) == CGAL::POSITIVE;
+}
 
 /// p without its coordinate `axis`.
 Point2 drop(const Point3& p, int axis) {
@@ -65,13 +77,16 @@ void Improver::init_slides() {
     for (int v : bnd_[b])
       if (v < int(r_.input_vertex.size()) && r_.input_vertex[v] >= 0) corners[f].push_back(v);
   }
-  std::vector<int> facet_axes(facets, 0);
+  std::vector<int>& facet_axes = facet_axes_;
+  facet_axes.assign(facets, 0);
+  facet_corner_.assign(facets, -1);
   for (int f = 0; f < facets; ++f) {
     std::sort(corners[f].begin(), corners[f].end());
     corners[f].erase(std::unique(corners[f].begin(), corners[f].end()), corners[f].end());
     std::vector<Point3> pts;
     for (int v : corners[f]) pts.push_back(P_[v]);
     facet_axes[f] = plane_axes(pts);
+    if (!corners[f].empty()) facet_corner_[f] = corners[f][0];
   }
   // A Steiner vertex of the boundary slides along the axes that every facet
   // of its boundary triangles runs along (one facet: within the facet; two:
@@ -82,10 +97,13 @@ void Improver::init_slides() {
     for (int v : bnd_[b]) axes[v] &= f < 0 ? 0 : facet_axes[f];
   }
   const int open = -1 - int(bnd_.size());
+  closed_ = true;
   for (std::size_t t = 0; t < tets_.size(); ++t)
     for (int k = 0; k < 4; ++k)
-      if (nb_[t][k] <= open)
+      if (nb_[t][k] <= open) {
+        closed_ = false;
         for (int v : tets_[t]) axes[v] = 0;  // a mesh that is not closed: its open faces' tets stay
+      }
   for (std::size_t v = 0; v < P_.size(); ++v) {
     const bool input = v < r_.input_vertex.size() && r_.input_vertex[v] >= 0;
     if (fixed_[v] && !input && axes[v] != 7) slide_[v] = axes[v];
@@ -97,6 +115,197 @@ int Improver::slide_axes(int v) const { return v >= 0 && v < int(slide_.size()) 
 int Improver::movable_axes(int v) const {
   if (v < 0 || v >= int(fixed_.size())) return 0;
   return fixed_[v] ? slide_axes(v) : 7;
+}
+
+bool Improver::insert_boundary(int t) {
+  if (!closed_ || !alive(t)) return false;
+  double best = -HUGE_VAL;
+  std::vector<int> best_old;
+  std::vector<Tet> best_fresh;
+  std::vector<std::pair<int, Tri3>> best_fan;
+  Point3 best_p{};
+  int best_f = -1;
+  const int p_id = int(P_.size());
+  for (int k = 0; k < 4; ++k) {
+    if (nb_[t][k] >= 0) continue;
+    const int b = -1 - nb_[t][k];
+    const int f = r_.mesh.boundary_facet[b];
+    if (f < 0 || facet_axes_[f] == 0) continue;
+    const int axes = facet_axes_[f];
+    const Tri3 tri = bnd_[b];
+    const Point3 &x = P_[tri[0]], &y = P_[tri[1]], &z = P_[tri[2]];
+    // The points aimed at: the triangle's circumcenter, centroid and edge
+    // midpoints (a midpoint of an edge inside the facet splits both its
+    // triangles; one on the facet's outline makes a flat tet and is refused).
+    std::vector<Point3> aims;
+    double r2;
+    const Point3 cc = geometry::circumcenter(x, y, z, r2);
+    if (std::isfinite(r2)) aims.push_back(cc);
+    aims.push_back({{(x[0] + y[0] + z[0]) / 3, (x[1] + y[1] + z[1]) / 3, (x[2] + y[2] + z[2]) / 3}});
+    aims.push_back(geometry::midpoint(x, y));
+    aims.push_back(geometry::midpoint(y, z));
+    aims.push_back(geometry::midpoint(z, x));
+    // The points of the facet whose coordinates off its axes p copies: its
+    // input corner when the facet runs along two axes (a plane x_i = c: p
+    // then lies on it exactly), else each vertex of the triangle.
+    std::vector<int> bases;
+    if (axes == 3 || axes == 5 || axes == 6)
+      bases.push_back(facet_corner_[f]);
+    else
+      bases.assign(tri.begin(), tri.end());
+    for (const Point3& aim : aims)
+      for (int base : bases) {
+        Point3 p = P_[base];
+        for (int c = 0; c < 3; ++c)
+          if (axes >> c & 1) p[c] = aim[c];
+        std::vector<int> cav;
+        std::vector<Tet> fresh;
+        std::vector<std::pair<int, Tri3>> fan;
+        if (!boundary_cavity(t, b, f, p, cav, fresh, fan)) continue;
+        // The new point is first slid along the facet's axes by the smoothing
+        // ascent on its own star (the cavity stays), then the insertion is judged.
+        P_.push_back(p);
+        double lmin = HUGE_VAL, current = HUGE_VAL;
+        for (const Tet& T : fresh) {
+          current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+          for (int j = 0; j < 3; ++j) lmin = std::min(lmin, geometry::dist2(P_[T[j]], p));
+        }
+        lmin = std::sqrt(lmin);
+        if (lmin > 0)
+          ascend(
+              p_id, fresh, current, lmin,
+              [&] {
+                for (const Tet& T : fresh)
+                  if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
+                return true;
+              },
+              axes);
+        vtet_.push_back(-1);
+        double w;
+        if (accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {
+          best = w;
+          best_old = cav;
+          best_fresh = fresh;
+          best_fan = fan;
+          best_p = P_[p_id];
+          best_f = f;
+        }
+        vtet_.pop_back();
+        P_.pop_back();
+      }
+  }
+  if (best_fresh.empty()) return false;
+  const std::size_t live = tets_.size() - free_slots_.size() + best_fresh.size() - best_old.size();
+  if (double(live) > std::max(kMaxTetGrowth * double(initial_tets_), double(initial_tets_ + kMinTetSlack)))
+    return false;
+  P_.push_back(best_p);
+  vtet_.push_back(-1);
+  fixed_.push_back(1);
+  slide_.resize(P_.size(), 0);
+  slide_[p_id] = std::uint8_t(facet_axes_[best_f]);
+  if (!replace(best_old, best_fresh, best_fan)) {
+    P_.pop_back();
+    vtet_.pop_back();
+    fixed_.pop_back();
+    slide_.pop_back();
+    return false;
+  }
+  r_.mesh.boundary_facet.resize(bnd_.size(), best_f);
+  r_.input_vertex.push_back(-1);
+  if (!r_.mesh.weights.empty()) r_.mesh.weights.push_back(0);
+  r_.nearest_neighbour.push_back(0);  // set in finish()
+  inserted_.push_back(p_id);
+  ++st_.inserted;
+  ++st_.inserted_on_boundary;
+  return true;
+}
+
+bool Improver::more_bad_tets(const std::vector<int>& old, const std::vector<Tet>& fresh) const {
+  const double below = std::sin(kInsertBelowDeg * geometry::kPi / 180);
+  int count = 0;
+  for (int t : old) count += q_[t] < below;
+  for (const Tet& T : fresh) count -= min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) < below;
+  return count < 0;
+}
+
+bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
+                               std::vector<std::pair<int, Tri3>>& fan) const {
+  // The tets whose circumsphere holds p, grown from t through inner faces.
+  cav.assign(1, t);
+  auto in_sphere = [&](int x) {
+    const Tet& T = tets_[x];
+    double s2;
+    const Point3 c = geometry::circumcenter(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], s2);
+    return std::isfinite(s2) && geometry::dist2(c, p) < s2;
+  };
+  for (std::size_t i = 0; i < cav.size() && int(cav.size()) < kMaxCavity; ++i)
+    for (int k = 0; k < 4; ++k) {
+      const int n = nb_[cav[i]][k];
+      if (n >= 0 && std::find(cav.begin(), cav.end(), n) == cav.end() && in_sphere(n)) cav.push_back(n);
+    }
+  const int p_id = int(P_.size());
+  for (int round = 0; round < kMaxCavity; ++round) {
+    fresh.clear();
+    std::vector<int> flat;  // the facet's triangles on the cavity's surface
+    int grow = -2;
+    for (int x : cav) {
+      for (int k = 0; k < 4 && grow == -2; ++k) {
+        const int n = nb_[x][k];
+        if (n >= 0 && std::find(cav.begin(), cav.end(), n) != cav.end()) continue;
+        if (n < 0 && r_.mesh.boundary_facet[-1 - n] == f) {
+          flat.push_back(-1 - n);
+          continue;
+        }
+        const Tri3 F = outward(tets_[x], k);
+        const Tet nt{{F[0], F[2], F[1], p_id}};
+        // p is not in P_ yet: test with it in place.
+        const Point3* q[4];
+        for (int j = 0; j < 4; ++j) q[j] = nt[j] == p_id ? &p : &P_[nt[j]];
+        if (!positive(*q[0], *q[1], *q[2], *q[3])) {
+          grow = n;
+          break;
+        }
+        fresh.push_back(nt);
+      }
+      if (grow != -2) break;
+    }
+    if (grow == -2) {
+      // The outline of the facet's triangles: the directed edges of no other
+      // of them; one cycle of |flat| + 2 edges (a disk without inner vertices).
+      if (std::find(flat.begin(), flat.end(), b) == flat.end()) return false;
+      std::vector<std::pair<int, int>> edges;
+      for (int c : flat)
+        for (int j = 0; j < 3; ++j) edges.push_back({bnd_[c][j], bnd_[c][(j + 1) % 3]});
+      std::vector<std::pair<int, int>> outline;
+      for (const auto& e : edges)
+        if (std::find(edges.begin(), edges.end(), std::make_pair(e.second, e.first)) == edges.end())
+          outline.push_back(e);
+      if (outline.size() != flat.size() + 2) return false;
+      // One cycle: following next from the first edge comes back after all.
+      int at = outline[0].second;
+      std::size_t steps = 1;
+      while (at != outline[0].first && steps <= outline.size()) {
+        int next = -1;
+        for (const auto& e : outline)
+          if (e.first == at) next = e.second;
+        if (next < 0) return false;
+        at = next;
+        ++steps;
+      }
+      if (steps != outline.size()) return false;
+      // The fan from p, outward like the facet's triangles: the old indices
+      // first, then new ones.
+      fan.clear();
+      for (std::size_t j = 0; j < outline.size(); ++j) {
+        const int index = j < flat.size() ? flat[j] : int(bnd_.size() + (j - flat.size()));
+        fan.push_back({index, {{outline[j].first, outline[j].second, p_id}}});
+      }
+      return true;
+    }
+    if (grow < 0 || int(cav.size()) >= kMaxCavity) return false;
+    cav.push_back(grow);
+  }
+  return false;
 }
 
 }  // namespace wqmesh::mesher
