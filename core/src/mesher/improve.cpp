@@ -281,9 +281,11 @@ bool Improver::admissible(const Tet& T, double size_cap) const {
   return R <= size_cap;
 }
 
-bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new) const {
+bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new,
+                      double floor) const {
   double worst_old = HUGE_VAL, size_cap = max_size_;
   for (int t : old) worst_old = std::min(worst_old, q_[t]);
+  if (!std::isnan(floor)) worst_old = floor;
   worst_new = HUGE_VAL;
   for (const Tet& T : fresh) {
     const double s = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
@@ -843,7 +845,6 @@ bool Improver::run() {
   };
   for (int pass = 0; pass < kImprovePasses; ++pass) {
     std::size_t changed = flips();
-    changed += contract_pass();
     // Smoothing: the free vertices of the bad tets.
     std::vector<int> verts;
     for (int t : bad_tets(target))
@@ -873,6 +874,7 @@ bool Improver::run() {
       const int v = int(P_.size()) - 1;
       changed += smooth(v);
     }
+    changed += contract_pass();  // what the others left (improve_contract.cpp)
     if (cancelled_) return false;
     st_.passes = pass + 1;
     if (changed == 0) break;
