@@ -405,6 +405,24 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
 }
 
+void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out,
+                                          CellRef start) const {
+  out.clear();
+  const Rt::Cell_handle c = impl_->rt.dimension() == 3 ? impl_->cell_of(start) : Rt::Cell_handle();
+  const WPoint wp(BPoint(p[0], p[1], p[2]), w);
+  // Only when p lies strictly inside c's power sphere (exact, unperturbed):
+  // then p is at no vertex (every vertex has a non-negative power to it) and
+  // c is in the conflict zone, which is connected, so the walk from c finds
+  // the same set as the walk from the cell that holds p.
+  if (c != Rt::Cell_handle() && impl_->rt.side_of_power_sphere(c, wp, false) == CGAL::ON_BOUNDED_SIDE) {
+    std::vector<Rt::Cell_handle> cells;
+    impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
+    for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
+    return;
+  }
+  conflict_cells(p, w, hint, out);
+}
+
 int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
   const Rt::Vertex_handle v = impl_->rt.nearest_power_vertex(BPoint(p[0], p[1], p[2]), impl_->start_cell(hint));
   return v == Rt::Vertex_handle() || impl_->rt.is_infinite(v) ? -1 : v->info();

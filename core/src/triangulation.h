@@ -106,6 +106,11 @@ class RegularTriangulation {
   /// conflicts with (negative power distance): the cells an insertion of p
   /// would destroy. Empty if p coincides with a vertex.
   void conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out) const;
+  /// The same set (in another order, maybe), starting from `start` (as
+  /// is_cell(t, ref) takes it) when that slot still holds a cell the point
+  /// conflicts with, without a point location (beyond the paper, issue 15:
+  /// rule 6's circumcenter conflicts with its own tet); else as above.
+  void conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out, CellRef start) const;
   /// The vertex nearest to p (power distance with the current weights).
   int nearest_vertex(const Point3& p, int hint = -1) const;
 

@@ -218,6 +218,53 @@ TEST(Triangulation, EdgeRingHintsAndFacetCellsAgreeWithTheCells) {
   EXPECT_GT(carried, 100);  // hints carried over 150 insertions were tested
 }
 
+TEST(Triangulation, ConflictCellsFromAStartCellAreThoseOfThePointLocation) {
+  // conflict_cells with a start cell (rule 6: the tet whose circumcenter is
+  // the point; issue 15) gives the set the point location gives, whether the
+  // start cell conflicts with the point (its circumcenter), does not (a far
+  // cell), or is gone (destroyed by a later insertion).
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(0, 1);
+  RegularTriangulation t;
+  for (int i = 0; i < 200; ++i) t.insert({u(rng), u(rng), u(rng)}, 0, i - 1);
+  std::vector<Tet> cells;
+  std::vector<CellRef> refs;
+  t.finite_cells(cells, refs);
+  auto as_set = [](std::vector<Tet> v) {
+    for (Tet& c : v) std::sort(c.begin(), c.end());
+    return std::set<Tet>(v.begin(), v.end());
+  };
+  std::vector<Tet> expected, got;
+  int own = 0;
+  for (std::size_t i = 0; i < cells.size(); i += 3) {
+    const Tet& c = cells[i];
+    double r2;
+    const Point3 z = wqmesh::geometry::circumcenter(t.point(c[0]), t.point(c[1]), t.point(c[2]), t.point(c[3]), r2);
+    if (!std::isfinite(r2)) continue;
+    t.conflict_cells(z, 0, c[0], expected);
+    ASSERT_FALSE(expected.empty());
+    t.conflict_cells(z, 0, c[0], got, refs[i]);
+    EXPECT_EQ(as_set(got), as_set(expected)) << "cell " << i;
+    EXPECT_EQ(as_set(got).count(*as_set({c}).begin()), 1u);                          // the start cell itself
+    t.conflict_cells(z, 0, c[0], got, refs[(i + cells.size() / 2) % cells.size()]);  // mostly not in conflict
+    EXPECT_EQ(as_set(got), as_set(expected)) << "cell " << i << " from a far cell";
+    ++own;
+  }
+  EXPECT_GT(own, 50);
+  // Stale starts: after more insertions many of those slots hold other cells
+  // or none.
+  for (int i = 0; i < 100; ++i) t.insert({u(rng), u(rng), u(rng)}, 0, 0);
+  int checked = 0;
+  for (std::size_t i = 0; i < cells.size(); i += 5) {
+    const Point3 q{{u(rng), u(rng), u(rng)}};
+    t.conflict_cells(q, 0, -1, expected);
+    t.conflict_cells(q, 0, -1, got, refs[i]);
+    EXPECT_EQ(as_set(got), as_set(expected)) << "stale cell " << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+}
+
 TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {
   RegularTriangulation t;
   std::mt19937 rng(3);

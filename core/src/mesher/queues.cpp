@@ -88,25 +88,46 @@ void Queues::enqueue_around(int v) {
   // triangles are then found from its edges to the other ring vertices.
   constexpr std::size_t kFan = 48;
   std::vector<Tri> pair;
+  // The ring vertices on P with their facets, in the ring's order, and how
+  // many ring vertices each facet holds: a triangle of facet f with every
+  // vertex in the ring needs three ring vertices in f (only the vertices
+  // whose facets_of holds f are in f's planar triangulation), so the star of
+  // a vertex other than v in a facet with fewer is not walked (issue 15; the
+  // same triangles are considered, in the same order).
+  std::vector<std::pair<int, int>>& on_facets = ring_facets_;
+  std::vector<int>& facet_list = ring_facet_list_;
+  on_facets.clear();
+  facet_list.clear();
   for (int x : ring) {
+    if (!sub_.on_p(x)) continue;
     sub_.facets_of(x, fs);
     for (int f : fs) {
-      // v's own star is always walked whole.
-      const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
+      on_facets.push_back({x, f});
+      facet_list.push_back(f);
+    }
+  }
+  std::sort(facet_list.begin(), facet_list.end());
+  auto ring_vertices_in = [&](int f) {
+    const auto r = std::equal_range(facet_list.begin(), facet_list.end(), f);
+    return r.second - r.first;
+  };
+  for (const auto& [x, f] : on_facets) {
+    if (x != v && ring_vertices_in(f) < 3) continue;
+    // v's own star is always walked whole.
+    const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
+    meter_.poll(1);
+    if (sub_.facet_triangulation(f).incident_triangles(x, around, cap)) {
+      meter_.poll(around.size());
+      for (const Tri& t : around)
+        if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
+      continue;
+    }
+    for (int y : ring) {
+      if (y == x || y == v || !sub_.on_p(y)) continue;  // a free y is in no facet
       meter_.poll(1);
-      if (sub_.facet_triangulation(f).incident_triangles(x, around, cap)) {
-        meter_.poll(around.size());
-        for (const Tri& t : around)
-          if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
-        continue;
-      }
-      for (int y : ring) {
-        if (y == x || y == v) continue;
-        meter_.poll(1);
-        sub_.facet_triangulation(f).edge_triangles(x, y, pair);
-        for (const Tri& t : pair)
-          if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
-      }
+      sub_.facet_triangulation(f).edge_triangles(x, y, pair);
+      for (const Tri& t : pair)
+        if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
     }
   }
   if (meter_.phase() == Phase::refine)

@@ -64,7 +64,7 @@ bool Refine::rule6_split_skinny_tet(const Tet& t, CellRef ref) {
   if (balls_.contains(z)) return false;
   // When ENCROACH rejects z for a point on a subsegment or subfacet, the tet
   // is looked at again afterwards (it may survive that insertion).
-  const Insertion ins = sub_.encroach(z, t[0]);
+  const Insertion ins = sub_.encroach(z, t[0], ref);
   if (ins_.insert(ins, Rule::rule6_split_skinny_tet) < 0) return false;
   if (ins.on != On::free && queues_.may_retry({{t[0], t[1], t[2]}})) queues_.push_tet(t, ref);
   return true;

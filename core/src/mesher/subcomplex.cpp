@@ -199,7 +199,7 @@ bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
 }
 
 void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
-                                     std::vector<Subfacet>& facet_out) const {
+                                     std::vector<Subfacet>& facet_out, CellRef start) const {
   // When no subsegment (subfacet) is encroached by a vertex, a point that
   // encroaches one conflicts with a cell incident to it: along the pencil of
   // spheres through its vertices the power of the point is affine, negative at
@@ -208,7 +208,9 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   seg_out.clear();
   facet_out.clear();
   std::vector<Tet> cells;
-  tri_.conflict_cells(c, 0, hint, cells);
+  // (The order of the cells does not matter: the edges and triangles are
+  // sorted below.)
+  tri_.conflict_cells(c, 0, hint, cells, start);
   // Only the edges and triangles with every vertex on P can be subsegments
   // and subfacets (on_p): the others, most of a refined mesh's, are left out
   // before the look-ups (issue 15; the same features are found).
@@ -361,10 +363,10 @@ Insertion Subcomplex::splitf(const Subfacet& h) const {
 
 // ---- ENCROACH (section 4.3) --------------------------------------------------------
 
-Insertion Subcomplex::encroach(const Point3& c, int hint) const {
+Insertion Subcomplex::encroach(const Point3& c, int hint, CellRef start) const {
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
-  encroached_by_point(c, hint, segs, facets);
+  encroached_by_point(c, hint, segs, facets, start);
   if (!segs.empty()) return splite(segs_.at(*std::min_element(segs.begin(), segs.end())));
   if (!facets.empty()) {
     // "One such subfacet h contains the orthogonal projection of c." When

@@ -169,14 +169,17 @@ class Subcomplex {
   Insertion splite(const Subsegment& e) const;
   Insertion splitf(const Subfacet& h) const;
   /// The point ENCROACH (section 4.3) returns for c.
-  Insertion encroach(const Point3& c, int hint) const;
+  /// `start`, when given, is a cell whose circumsphere may hold c (rule 6:
+  /// the tet whose circumcenter c is), where the search of the cells c
+  /// conflicts with starts without a point location; same answer.
+  Insertion encroach(const Point3& c, int hint, CellRef start = nullptr) const;
   bool segment_encroached(const Subsegment& e) const;  ///< by a vertex of V (on or inside)
   bool subfacet_present(const Subfacet& h) const;
   bool subfacet_encroached(const Subfacet& h) const;  ///< by a vertex (strictly inside)
   /// Subsegments and subfacets encroached by a point, among the features of
   /// the cells the point conflicts with (see the argument in subcomplex.cpp).
-  void encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& segs,
-                           std::vector<Subfacet>& facets) const;
+  void encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& segs, std::vector<Subfacet>& facets,
+                           CellRef start = nullptr) const;
   /// A subfacet whose diametric ball lies inside a protecting ball.
   bool guarded(const Subfacet& h) const;
   /// Whether every subsegment and subfacet is in the triangulation.
