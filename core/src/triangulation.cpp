@@ -431,15 +431,18 @@ int RegularTriangulation::nearest_vertex(const Point3& p, int hint) const {
 namespace {
 
 // The index of each cell of a triangulation by its address, for cell_graph:
-// open addressing with linear probing in a table of at least twice as many
-// slots as cells (a power of two), so a look-up touches one or two slots
-// where std::unordered_map follows a node per entry (the whole-mesh cell
-// graph was 3-8% of a run with it; issue 15).
+// open addressing with linear probing in a table of at least 5/4 as many
+// slots as cells (a power of two: at most 4/5 full), so a look-up touches a
+// few slots where std::unordered_map follows a node per entry (the
+// whole-mesh cell graph was 3-8% of a run with it; issue 15). The table is
+// a transient beside the triangulation at the run's peak (12 bytes a slot:
+// at least twice as many slots took about 80 bytes per output tet on
+// anchor.off).
 class CellIndex {
  public:
   explicit CellIndex(std::size_t n) {
     std::size_t size = 16;
-    while (size < 2 * n) size *= 2;
+    while (4 * size < 5 * n) size *= 2;
     mask_ = size - 1;
     keys_.assign(size, nullptr);
     values_.assign(size, -1);

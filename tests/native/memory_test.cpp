@@ -2,19 +2,24 @@
 // triangulation, the subcomplex, the queues) are freed once the mesh is
 // extracted, before the per-tet measures, the classes and the improvement
 // phase are built; the extraction split in two (the mesh, then
-// classify_tets) gives the same result as the whole extraction.
+// classify_tets) gives the same result as the whole extraction; PUMP's
+// compact label table answers as a map does.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 #include <malloc.h>
 
+#include <algorithm>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "mesh_invariants.h"
 #include "mesher/classify.h"
 #include "mesher/extract.h"
 #include "mesher/mesher.h"
+#include "mesher/pump.h"
 #include "wqmesh/mesher.h"
 
 namespace wqmesh {
@@ -131,6 +136,40 @@ TEST(Memory, TheTriangulationIsFreedBeforeTheImprovementPhase) {
   EXPECT_LT(at_improve - before, after - before)
       << "at the improvement phase's start the run held " << at_improve - before << " bytes, the finished result "
       << after - before << ": the mesher's pieces or the old measures were not freed";
+}
+
+// PUMP's CellLabels (an open-addressing table) answers every look-up as a
+// std::unordered_map does, through growth far beyond its first size, with
+// keys holding kInfinite and labels overwritten.
+TEST(Memory, PumpsLabelTableAnswersAsAMap) {
+  mesher::CellLabels table;
+  table.reset(10);
+  std::unordered_map<mesher::TetKey, char, mesher::TetKeyHash> map;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> id(-1, 300);
+  auto key = [&] {
+    mesher::TetKey t{{id(rng), id(rng), id(rng), id(rng)}};
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  for (int i = 0; i < 20000; ++i) {
+    const mesher::TetKey t = key();
+    const char label = static_cast<char>(rng() % 2);
+    table.set(t, label);
+    map[t] = label;
+    const mesher::TetKey probe = key();
+    const char* found = table.find(probe);
+    const auto it = map.find(probe);
+    ASSERT_EQ(found != nullptr, it != map.end()) << "look-up " << i;
+    if (found) ASSERT_EQ(*found, it->second) << "look-up " << i;
+  }
+  for (const auto& [t, label] : map) {
+    const char* found = table.find(t);
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(*found, label);
+  }
+  table.reset(0);
+  EXPECT_EQ(table.find(map.begin()->first), nullptr);
 }
 
 }  // namespace

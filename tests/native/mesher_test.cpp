@@ -757,7 +757,11 @@ TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
     own.prepare();
     EXPECT_EQ(handed.candidates(), own.candidates());
     // Labels in reversed cell order.
-    const RegularTriangulation::CellGraph& g = scan;
+    // The scan hands on its cells without their neighbours (PUMP reads only
+    // the cells): the same triangulation's own graph, in the same order.
+    EXPECT_TRUE(scan.neighbor.empty());
+    const RegularTriangulation::CellGraph g = m.triangulation().cell_graph();
+    EXPECT_EQ(g.cells, scan.cells);
     bool order_free = false;
     const std::vector<char> labels = mesher::interior_labels(dom, m.subcomplex(), g, m.meter(), false, &order_free);
     EXPECT_EQ(labels, scan_labels);

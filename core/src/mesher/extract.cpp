@@ -2,6 +2,7 @@
 // input subfacets) and their classes (classify.cpp): the mesh WQMESH returns.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -291,6 +292,10 @@ std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, 
     const TetQuality q = tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
     slivers += !(q.radius_edge > opt_.rho0) && q.min_dihedral_deg < opt_.theta_deg;
   }
+  // PUMP reads the scan's cells and labels only: the neighbours go now, so
+  // that they are not held beside PUMP's label table (issue 15, the peak
+  // memory: 16 bytes a cell).
+  std::vector<std::array<int, 4>>().swap(g.neighbor);
   scan = std::move(g);
   scan_labels = std::move(flood);
   return slivers;

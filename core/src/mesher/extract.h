@@ -44,9 +44,10 @@ class Extract {
   MeshResult mesh();
   /// The inside slivers run() would count now (QMESH's, before PUMP),
   /// without building the mesh; polls, and gives 0 once the run must stop.
-  /// `scan` and `scan_labels` get the cell graph (CGAL's order) and its
-  /// interior_labels, which PUMP's prepare takes instead of scanning the
-  /// same triangulation again (Pump::use_scan); empty when stopped.
+  /// `scan` and `scan_labels` get the cell graph's cells (CGAL's order; no
+  /// neighbours: PUMP does not read them) and their interior_labels, which
+  /// PUMP's prepare takes instead of scanning the same triangulation again
+  /// (Pump::use_scan); empty when stopped.
   std::size_t count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels);
 
  private:

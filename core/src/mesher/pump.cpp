@@ -34,6 +34,56 @@ bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, doubl
 
 }  // namespace
 
+// No cell has a vertex id below kInfinite (-1): the key of an empty slot.
+constexpr int kNoKey = -2;
+
+void CellLabels::reset(std::size_t n) {
+  std::size_t size = 16;
+  while (3 * size < 4 * n) size *= 2;
+  keys_.assign(size, TetKey{{kNoKey, kNoKey, kNoKey, kNoKey}});
+  labels_.assign(size, 0);
+  mask_ = size - 1;
+  used_ = 0;
+}
+
+std::size_t CellLabels::slot(const TetKey& t) const {
+  return static_cast<std::size_t>((std::uint64_t(TetKeyHash()(t)) * 0x9E3779B97F4A7C15ull) >> 17) & mask_;
+}
+
+const char* CellLabels::find(const TetKey& t) const {
+  if (keys_.empty()) return nullptr;
+  for (std::size_t i = slot(t);; i = (i + 1) & mask_) {
+    if (keys_[i] == t) return &labels_[i];
+    if (keys_[i][0] == kNoKey) return nullptr;
+  }
+}
+
+void CellLabels::set(const TetKey& t, char label) {
+  if (4 * (used_ + 1) > 3 * keys_.size()) grow();
+  for (std::size_t i = slot(t);; i = (i + 1) & mask_) {
+    if (keys_[i] == t) {
+      labels_[i] = label;
+      return;
+    }
+    if (keys_[i][0] == kNoKey) {
+      keys_[i] = t;
+      labels_[i] = label;
+      ++used_;
+      return;
+    }
+  }
+}
+
+void CellLabels::grow() {
+  std::vector<TetKey> keys;
+  std::vector<char> labels;
+  keys.swap(keys_);
+  labels.swap(labels_);
+  reset(std::max<std::size_t>(16, keys.size()));  // twice the slots: keys.size() keys at most 3/4 full
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (keys[i][0] != kNoKey) set(keys[i], labels[i]);
+}
+
 void Pump::prepare() {
   // N(v), the nearest-neighbour distance in the unweighted Del V at the end
   // of REFINE; it bounds the weights and does not change when they do.
@@ -59,10 +109,10 @@ void Pump::prepare() {
     inside = interior_labels(dom_, sub_, g, meter_, true);
     if (meter_.stopped()) return;
   }
-  labels_.clear();
+  labels_.reset(g.cells.size());
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
     if (!meter_.poll(1, false)) return;
-    labels_[key_of(g.cells[i])] = inside[i];
+    labels_.set(key_of(g.cells[i]), inside[i]);
   }
   // Vertices of inside tets with a dihedral angle <= theta, worst first.
   candidates_.clear();
@@ -130,8 +180,7 @@ char Pump::label(const Tet& t) {
   // of a neighbour across a facet, flipped when the facet is a wall; the
   // changed region is surrounded by cells known before.
   if (std::count(t.begin(), t.end(), kInfinite) || sub_.flat_on_facet(t)) return 0;
-  const auto it = labels_.find(key_of(t));
-  if (it != labels_.end()) return it->second;
+  if (const char* known = labels_.find(key_of(t))) return *known;
   // At most kLabelRounds rounds, each over a deduplicated list of cells.
   std::vector<Tet> todo{t};
   for (int round = 0; round < kLabelRounds && !todo.empty(); ++round) {
@@ -141,7 +190,7 @@ char Pump::label(const Tet& t) {
     meter_.poll(todo.size());
     std::vector<Tet> later;
     for (const Tet& c : todo) {
-      if (labels_.count(key_of(c))) continue;
+      if (labels_.find(key_of(c))) continue;
       bool done = false;
       for (int k = 0; k < 4 && !done; ++k) {
         const int a = c[(k + 1) % 4], b = c[(k + 2) % 4], d = c[(k + 3) % 4];
@@ -154,24 +203,24 @@ char Pump::label(const Tet& t) {
         if (std::count(other.begin(), other.end(), kInfinite)) {
           lo = 0;
         } else {
-          const auto jt = labels_.find(key_of(other));
-          if (jt == labels_.end()) {
+          const char* known = labels_.find(key_of(other));
+          if (!known) {
             later.push_back(other);
             continue;
           }
-          lo = jt->second;
+          lo = *known;
         }
-        labels_[key_of(c)] = is_wall(a, b, d) ? char(1 - lo) : lo;
+        labels_.set(key_of(c), is_wall(a, b, d) ? char(1 - lo) : lo);
         done = true;
       }
       if (!done) later.push_back(c);
     }
-    if (!labels_.count(key_of(t))) later.push_back(t);  // retry after its neighbours
+    if (!labels_.find(key_of(t))) later.push_back(t);  // retry after its neighbours
     todo.swap(later);
   }
-  const auto jt = labels_.find(key_of(t));
-  if (jt == labels_.end()) meter_.cap_reached();  // kLabelRounds: taken as outside
-  return jt != labels_.end() ? jt->second : 0;
+  const char* known = labels_.find(key_of(t));
+  if (!known) meter_.cap_reached();  // kLabelRounds: taken as outside
+  return known ? *known : 0;
 }
 
 Pump::Features Pump::features_around(int v) const {

@@ -21,6 +21,29 @@
 
 namespace wqmesh::mesher {
 
+/// The inside/outside label of cells by their TetKey: an open-addressing
+/// table (linear probing, at most 3/4 full) with the labels in a byte array
+/// beside the keys, 17 bytes a slot. Beyond the paper (issue 15, the peak
+/// memory): it holds every cell of V's triangulation while PUMP runs, where
+/// a std::unordered_map took about 70 bytes a cell (a node per entry and the
+/// buckets). Only look-ups and stores: the same answers as a map.
+class CellLabels {
+ public:
+  /// Empties the table, with room for n keys.
+  void reset(std::size_t n);
+  /// The label of key t, or nullptr when it has none.
+  const char* find(const TetKey& t) const;
+  /// Sets the label of t (added when it had none).
+  void set(const TetKey& t, char label);
+
+ private:
+  std::size_t slot(const TetKey& t) const;
+  void grow();
+  std::vector<TetKey> keys_;
+  std::vector<char> labels_;
+  std::size_t used_ = 0, mask_ = 0;
+};
+
 class Pump {
  public:
   Pump(const Domain& domain, const MeshOptions& options, RegularTriangulation& tri,
@@ -28,9 +51,10 @@ class Pump {
       : dom_(domain), opt_(options), tri_(tri), verts_(vertices), sub_(sub), balls_(balls), meter_(meter) {}
   /// N(v) for every vertex, cell labels, walls. Called by run().
   void prepare();
-  /// Hands prepare() the cell graph (CGAL's order) and its interior_labels
-  /// of the current triangulation, so that it does not scan it again
-  /// (beyond the paper: Extract::count_qmesh_slivers made them just before).
+  /// Hands prepare() the cells of the current triangulation's graph (CGAL's
+  /// order; prepare reads no neighbours) and their interior_labels, so that
+  /// it does not scan it again (beyond the paper:
+  /// Extract::count_qmesh_slivers made them just before).
   void use_scan(RegularTriangulation::CellGraph g, std::vector<char> inside) {
     scan_ = std::move(g);
     scan_labels_ = std::move(inside);
@@ -87,7 +111,7 @@ class Pump {
   WorkMeter& meter_;
   std::size_t pumped_vertices_ = 0;
   std::vector<double> nn_;  ///< N(v), measured by prepare()
-  std::unordered_map<TetKey, char, TetKeyHash> labels_;
+  CellLabels labels_;
   std::unordered_set<Tri, TriHash> walls_;
   std::vector<std::vector<Tri>> vertex_facets_;
   std::vector<std::pair<double, int>> candidates_;
