@@ -12,7 +12,9 @@
 #include <set>
 
 #include "cgal_types.h"
+#include "geometry.h"
 #include "mesh_invariants.h"
+#include "mesher/classify.h"
 #include "mesher/improve.h"
 #include "wqmesh/quality.h"
 
@@ -691,6 +693,179 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
   }
   // thin_wedge.off (an example model, always there) gets points on facets.
   EXPECT_GT(inserted_on_boundary, 0u);
+}
+
+// ---- the class guard (Improver::classes_hold, classify.h's TetClassifier) ----
+
+/// The balls as the phase gets them (a grid over a box holding them all).
+mesher::ProtectingBalls index_of(const std::vector<ProtectingBall>& balls) {
+  mesher::ProtectingBalls index(Box{{{-10, -10, -10}}, {{10, 10, 10}}});
+  index.set(balls);
+  return index;
+}
+
+/// With the class guard (the ball `ball`), the 2-3 flip of c's first tet
+/// through its face opposite vertex 3 is refused, and the whole phase then
+/// leaves no violation.
+void expect_flip_refused(Config c, const ProtectingBall& ball) {
+  const mesher::ProtectingBalls balls = index_of({ball});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  EXPECT_FALSE(im.flip23(0, slot(im.tets()[0], 3)));
+  ASSERT_TRUE(im.run());
+  im.finish();
+  EXPECT_EQ(classify_mesh(c.r.mesh, {ball}, 2.2, 3).violations, 0u);
+}
+
+/// The two tets of a 2-3 flip over the triangle 012 (apexes 3 above, 4
+/// below), both of a good shape (R/l <= 2.2, no dihedral angle under 3
+/// degrees), whose flip raises the worst min-sine (0.310 -> 0.403) but makes
+/// the tet (1, 2, 3, 4) skinny (R/l 3.19).
+Config skinny_flip() {
+  Config c;
+  c.r.mesh.vertices = {
+      {{0.95, -0.45, 0}}, {{0.4, 0.75, 0}}, {{-0.9, -0.8, 0}}, {{-0.225, -0.325, 0.35}}, {{-0.275, -0.35, -0.35}}};
+  c.add_tet(0, 1, 2, 3);
+  c.add_tet(0, 1, 2, 4);
+  c.close();
+  return c;
+}
+
+TEST(Improve, AFlipThatMakesASkinnyTetOutsideTheBallsIsRefused) {
+  const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
+  const MeshClasses start = classify_mesh(skinny_flip().r.mesh, {far}, 2.2, 3);
+  ASSERT_EQ(start.skinny + start.slivers, 0u);
+  // Without the guard the flip is taken (the min-sine rule alone), and it
+  // makes a violation.
+  Config free = skinny_flip();
+  {
+    Improver im(free.r, 2.2, 0);
+    ASSERT_TRUE(im.flip23(0, slot(im.tets()[0], 3)));
+    im.finish();
+  }
+  const MeshClasses after = classify_mesh(free.r.mesh, {far}, 2.2, 3);
+  ASSERT_EQ(after.violations, 1u);
+  // With it: refused, and the whole phase leaves no violation.
+  expect_flip_refused(skinny_flip(), far);
+  // A ball around the skinny tet's circumcentre makes it near a small angle
+  // (classify.h (a)): then the flip is no violation, and taken.
+  std::size_t skinny = 0;
+  for (std::size_t i = 0; i < after.tet_class.size(); ++i)
+    if (after.tet_class[i] == TetClass::violation) skinny = i;
+  const auto& t = free.r.mesh.tets[skinny];
+  const auto& P = free.r.mesh.vertices;
+  double r2;
+  const ProtectingBall around{geometry::circumcenter(P[t[0]], P[t[1]], P[t[2]], P[t[3]], r2), 0.05, true};
+  const mesher::ProtectingBalls near = index_of({around});
+  Config d = skinny_flip();
+  Improver in(d.r, 2.2, 0);
+  in.set_classes(&near, 3);
+  EXPECT_TRUE(in.flip23(0, slot(in.tets()[0], 3)));
+}
+
+TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
+  // Two good tets over the triangle 012 whose 2-3 flip (taken here without
+  // the guard, as if PUMP had left its result) raises the worst min-sine
+  // 0.401 -> 0.419 but makes a skinny tet (R/l 2.25) outside the balls.
+  Config c;
+  c.r.mesh.vertices = {
+      {{-0.2, -0.75, 0}}, {{0.95, 0.65, 0}}, {{-0.6, 0.2, 0}}, {{0.175, 0.125, 0.3}}, {{0.45, 0.2, -0.45}}};
+  c.add_tet(0, 1, 2, 3);
+  c.add_tet(0, 1, 2, 4);
+  c.close();
+  {
+    Improver im(c.r, 2.2, 0);
+    ASSERT_TRUE(im.flip23(0, slot(im.tets()[0], 3)));
+    im.finish();
+  }
+  const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
+  ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 1u);
+  // No tet is under the phase's target angle, so only fix_violations works
+  // on it: the 3-2 flip back removes the violation, its worst min-sine
+  // (0.401) below the old one but above sin(kImproveTargetDeg).
+  const double before = worst(c.r.mesh);
+  ASSERT_GT(before, std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180));
+  // Without the protecting balls (no classes) the phase leaves it.
+  Config plain = c;
+  {
+    Improver ip(plain.r, 2.2, 0);
+    ASSERT_TRUE(ip.run());
+    ip.finish();
+  }
+  EXPECT_EQ(plain.r.improve.changes(), 0u);
+  const mesher::ProtectingBalls balls = index_of({far});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  ASSERT_TRUE(im.run());
+  im.finish();
+  EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
+  EXPECT_EQ(c.r.improve.flips32, 1u);
+  EXPECT_GE(worst(c.r.mesh), std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180));
+  expect_positive(c.r);
+}
+
+TEST(Improve, AFlipThatShortensLvSoThatATetBesideItLosesNearIsRefused) {
+  // The 2-3 flip of the tets 0123 and 0124 makes the edge 34, shorter than
+  // every edge at 3 (L_3^2 0.4516 -> 0.4406), and its three tets are of a
+  // good shape. The tet 0135 beside them is skinny and near a small angle
+  // only through vertex 3 (classify.h (b): |v3 - c|^2 <= (2r)^2 + L_3^2/9
+  // for the ball B, which the shorter L_3 no longer reaches).
+  Config c;
+  c.r.mesh.vertices = {{{0.35, 0.95, 0}},     {{0.8, -0.7, 0}},         {{-0.95, 0.3, 0}},
+                       {{-0.325, 0.45, 0.3}}, {{-0.375, 0.325, -0.35}}, {{0.3, 0.24, 0.17}}};
+  c.add_tet(0, 1, 2, 3);
+  c.add_tet(0, 1, 2, 4);
+  c.add_tet(0, 1, 3, 5);
+  c.close();
+  const ProtectingBall B{{{-0.061, 0.513, 0.427}}, 0.1, true};
+  const MeshClasses before = classify_mesh(c.r.mesh, {B}, 2.2, 3);
+  ASSERT_EQ(before.violations, 0u);
+  ASSERT_EQ(before.tet_class[2], TetClass::skinny_near);
+  // Without the guard: taken, and the tet beside it becomes a violation.
+  Config free = c;
+  {
+    Improver im(free.r, 2.2, 0);
+    ASSERT_TRUE(im.flip23(0, slot(im.tets()[0], 3)));
+    im.finish();
+  }
+  const MeshClasses after = classify_mesh(free.r.mesh, {B}, 2.2, 3);
+  ASSERT_EQ(after.violations, 1u);
+  for (std::size_t i = 0; i < after.tet_class.size(); ++i)
+    if (after.tet_class[i] == TetClass::violation)
+      EXPECT_EQ(std::set<int>(free.r.mesh.tets[i].begin(), free.r.mesh.tets[i].end()), (std::set<int>{0, 1, 3, 5}));
+  // With the guard: refused.
+  expect_flip_refused(c, B);
+}
+
+TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {
+  std::vector<std::string> files = models();
+  if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/part.off"))  // violations before the phase
+    files.push_back(std::string(WQMESH_SHARED_MODELS) + "/part.off");
+  ASSERT_FALSE(files.empty());
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const invariants::Input in = invariants::load(f);
+    MeshOptions opt;
+    opt.improve = false;
+    MeshResult r = mesh_polyhedron(in.plc, in.analysis, opt);
+    const mesher::ProtectingBalls balls = index_of(r.protecting_balls);
+    const std::size_t violations_before = r.violations;
+    Improver im(r, opt.rho0, opt.max_size);
+    im.set_classes(&balls, opt.theta_deg);
+    // Before: the guard's class of every tet is the statistics' (classify_tets).
+    for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) ASSERT_EQ(im.tet_class(int(t)), r.tet_class[t]) << "tet " << t;
+    ASSERT_TRUE(im.run());
+    // After: the guard's classes, kept current through every change, are
+    // those classify_tets recounts from the mesh written back.
+    std::vector<TetClass> kept;
+    for (std::size_t t = 0; t < im.tets().size(); ++t)
+      if (im.alive(int(t))) kept.push_back(im.tet_class(int(t)));
+    im.finish();
+    ASSERT_TRUE(mesher::classify_tets(r, balls, opt));
+    EXPECT_EQ(kept, r.tet_class);
+    // No accepted change adds a violation.
+    EXPECT_LE(r.violations, violations_before);
+  }
 }
 
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {

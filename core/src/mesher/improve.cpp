@@ -133,8 +133,19 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
 
 void Improver::set_classes(const ProtectingBalls* balls, double theta_deg) {
   balls_ = balls;
-  theta_deg_ = theta_deg;
-  sin_theta_ = std::sin(theta_deg * geometry::kPi / 180);
+  classifier_.reset();
+  L2_.clear();
+  shape_.clear();
+  bad_at_.clear();
+  if (balls == nullptr) return;
+  classifier_ = std::make_unique<TetClassifier>(*balls, rho_, theta_deg);
+  L2_.assign(P_.size(), HUGE_VAL);
+  bad_at_.assign(P_.size(), 0);
+  shape_.assign(tets_.size(), TetClassifier::Shape::good);
+  std::vector<int> live;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) live.push_back(int(t));
+  learn(live);
 }
 
 void Improver::touch(const Tet& T) {
@@ -228,50 +239,139 @@ bool Improver::ring(int t, int a, int b, std::vector<int>& ts, std::vector<int>&
   return vs.size() == ts.size();
 }
 
-bool Improver::violation(const Tet& T) const {
-  if (balls_ == nullptr) return false;
-  const Point3 &a = P_[T[0]], &b = P_[T[1]], &c = P_[T[2]], &d = P_[T[3]];
-  double rl, R;
-  radius_edge(a, b, c, d, rl, R);
-  bool skinny = rl > rho_;
-  const std::vector<double>& w = r_.mesh.weights;
-  if (!skinny && !w.empty()) {
-    // The weighted R/l (the orthoradius over the shortest edge), as
-    // mesh_quality measures a weighted mesh; new vertices weigh 0.
-    const Point3 p4[4] = {{{0, 0, 0}}, sub(b, a), sub(c, a), sub(d, a)};
-    double w4[4];
-    for (int k = 0; k < 4; ++k) w4[k] = T[k] < int(w.size()) ? w[T[k]] : 0;
-    Point3 z;
-    double z2;
-    if (!geometry::orthosphere(p4, w4, z, z2)) return true;  // flat: no measure to trust
-    const double l2 = std::min({dot(p4[1], p4[1]), dot(p4[2], p4[2]), dot(p4[3], p4[3]), geometry::dist2(b, c),
-                                geometry::dist2(b, d), geometry::dist2(c, d)});
-    skinny = z2 > rho_ * rho_ * l2;
-  }
-  bool sliver = false;
-  if (!skinny && min_sine(a, b, c, d) < sin_theta_) sliver = tet_min_dihedral_deg(a, b, c, d) < theta_deg_;
-  if (!skinny && !sliver) return false;
-  double r2;
-  const Point3 zc = geometry::circumcenter(a, b, c, d, r2);
-  if (balls_->contains(zc)) return false;
-  const std::vector<double>& nn = r_.nearest_neighbour;
-  for (int k = 0; k < 4; ++k) {
-    const double n = T[k] < int(nn.size()) ? nn[T[k]] : 0;  // 0 for a new vertex until finish()
-    if (balls_->expansion_encroached(P_[T[k]], n * n / 9)) return false;
-  }
-  return true;
+TetClass Improver::tet_class(int t) const {
+  if (!classifier_ || !alive(t)) return TetClass::good;
+  const Tet& T = tets_[t];
+  return classifier_->classify(shape_[t], P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
+                               {{L2_[T[0]], L2_[T[1]], L2_[T[2]], L2_[T[3]]}});
 }
 
-double Improver::skinny_level(const Tet& T) const {
-  if (balls_ == nullptr) return rho_;
-  double rl, R;
-  radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
-  if (!(rl > rho_)) return rho_;
-  // Near a small angle whatever the edges become: its circumcenter in a
-  // protecting ball (classify.h's first test).
-  double r2;
-  if (balls_->contains(geometry::circumcenter(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], r2))) return rho_;
-  return rl;
+double Improver::shortest_at(int v, const std::vector<int>& skip) const {
+  std::vector<int> S;
+  star(v, S);
+  double l2 = HUGE_VAL;
+  for (int t : S)
+    if (std::find(skip.begin(), skip.end(), t) == skip.end())
+      for (int u : tets_[t])
+        if (u != v) l2 = std::min(l2, geometry::dist2(P_[u], P_[v]));
+  return l2;
+}
+
+void Improver::forget(const std::vector<int>& ids) {
+  if (!classifier_) return;
+  for (int t : ids)
+    if (shape_[t] != TetClassifier::Shape::good)
+      for (int v : tets_[t]) --bad_at_[v];
+}
+
+void Improver::learn(const std::vector<int>& ids) {
+  if (!classifier_) return;
+  if (shape_.size() < tets_.size()) shape_.resize(tets_.size(), TetClassifier::Shape::good);
+  if (L2_.size() < P_.size()) L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0);
+  std::vector<int> verts;
+  for (int t : ids) {
+    const Tet& T = tets_[t];
+    shape_[t] = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q_[t]);
+    for (int v : T) {
+      bad_at_[v] += shape_[t] != TetClassifier::Shape::good;
+      verts.push_back(v);
+    }
+  }
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  for (int v : verts) L2_[v] = shortest_at(v);
+}
+
+Improver::ClassesBefore Improver::classes_before(const std::vector<int>& old) const {
+  ClassesBefore b;
+  if (!classifier_) return b;
+  for (int t : old) {
+    b.violations += tet_class(t) == TetClass::violation;
+    const Tet& T = tets_[t];
+    for (int i = 0; i < 4; ++i) {
+      double m = HUGE_VAL;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) m = std::min(m, geometry::dist2(P_[T[i]], P_[T[j]]));
+      auto it = std::find_if(b.inside.begin(), b.inside.end(), [&](const auto& e) { return e.first == T[i]; });
+      if (it == b.inside.end())
+        b.inside.push_back({T[i], m});
+      else
+        it->second = std::min(it->second, m);
+    }
+  }
+  return b;
+}
+
+int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& before,
+                             const std::vector<Tet>& fresh) const {
+  if (!classifier_) return 0;
+  const auto cur = [&](int v) { return v < int(L2_.size()) ? L2_[v] : HUGE_VAL; };
+  // L_v^2 after the change at each vertex of the new tets: the shorter of
+  // its new edges and of its edges outside `old` (those stay). When its L_v
+  // now is shorter than every old edge at it, that edge lies outside `old`.
+  struct After {
+    int v;
+    double l2;
+  };
+  std::vector<After> after;
+  for (const Tet& T : fresh)
+    for (int i = 0; i < 4; ++i) {
+      double m = HUGE_VAL;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) m = std::min(m, geometry::dist2(P_[T[i]], P_[T[j]]));
+      auto it = std::find_if(after.begin(), after.end(), [&](const After& a) { return a.v == T[i]; });
+      if (it == after.end())
+        after.push_back({T[i], m});
+      else
+        it->l2 = std::min(it->l2, m);
+    }
+  std::vector<int> changed;  // vertices whose L_v changes
+  for (After& a : after) {
+    auto it = std::find_if(before.inside.begin(), before.inside.end(), [&](const auto& e) { return e.first == a.v; });
+    const double inside = it == before.inside.end() ? HUGE_VAL : it->second;
+    const double outside = cur(a.v) < inside ? cur(a.v) : shortest_at(a.v, old);
+    a.l2 = std::min(a.l2, outside);
+    if (a.l2 != cur(a.v)) changed.push_back(a.v);
+  }
+  const auto l2_after = [&](int v) {
+    for (const After& a : after)
+      if (a.v == v) return a.l2;
+    return cur(v);
+  };
+  int violations = 0;
+  for (const Tet& T : fresh) {
+    const TetClassifier::Shape sh =
+        classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    if (sh == TetClassifier::Shape::good) continue;
+    violations += classifier_->classify(sh, P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
+                                        {{l2_after(T[0]), l2_after(T[1]), l2_after(T[2]), l2_after(T[3])}}) ==
+                  TetClass::violation;
+  }
+  // The tets outside `old` of a bad shape at a vertex whose L_v changes.
+  int allowed = before.violations;
+  std::vector<int> seen, S;
+  for (int v : changed) {
+    int bad_inside = 0;
+    for (int t : old) bad_inside += has(t, v) && shape_[t] != TetClassifier::Shape::good;
+    if (v >= int(bad_at_.size()) || bad_at_[v] - bad_inside <= 0) continue;
+    star(v, S);
+    for (int t : S) {
+      if (shape_[t] == TetClassifier::Shape::good || std::find(old.begin(), old.end(), t) != old.end() ||
+          std::find(seen.begin(), seen.end(), t) != seen.end())
+        continue;
+      seen.push_back(t);
+      const Tet& T = tets_[t];
+      allowed += tet_class(t) == TetClass::violation;
+      violations += classifier_->classify(shape_[t], P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
+                                          {{l2_after(T[0]), l2_after(T[1]), l2_after(T[2]), l2_after(T[3])}}) ==
+                    TetClass::violation;
+    }
+  }
+  return violations - allowed;
+}
+
+bool Improver::beats(double worst_new, double worst_old) const {
+  return worst_new > worst_old || (fixing_ && worst_new >= std::sin(kImproveTargetDeg * geometry::kPi / 180));
 }
 
 bool Improver::admissible(const Tet& T, double size_cap) const {
@@ -288,17 +388,12 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   if (!std::isnan(floor)) worst_old = floor;
   worst_new = HUGE_VAL;
   for (const Tet& T : fresh) {
-    const double s = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
-    if (!(s > worst_old)) return false;
-    worst_new = std::min(worst_new, s);
+    worst_new = std::min(worst_new, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    if (!beats(worst_new, worst_old)) return false;
   }
   for (const Tet& T : fresh)
     if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
-  int violations = 0;
-  double level = rho_;
   for (int t : old) {
-    level = std::max(level, skinny_level(tets_[t]));
-    violations += violation(tets_[t]);
     if (max_size_ > 0) {
       const Tet& T = tets_[t];
       double rl, R;
@@ -306,12 +401,10 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
       size_cap = std::max(size_cap, R);
     }
   }
-  for (const Tet& T : fresh) {
-    if (!admissible(T, size_cap) || skinny_level(T) > level) return false;
-    violations -= violation(T);
-    if (violations < 0) return false;
-  }
-  return true;
+  for (const Tet& T : fresh)
+    if (!admissible(T, size_cap)) return false;
+  const int change = classes_change(old, classes_before(old), fresh);
+  return fixing_ ? change < 0 : change <= 0;
 }
 
 bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
@@ -390,6 +483,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
   for (const Outer& o : outer)
     if (!o.used) return false;
   // Commit.
+  forget(old);
   for (const auto& [b, tri] : boundary) {
     if (b >= int(bnd_.size())) bnd_.resize(b + 1);
     bnd_[b] = tri;
@@ -435,6 +529,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
         if (o.beyond >= 0) nb_[o.beyond][o.beyond_slot] = id[i];
       }
     }
+  learn(id);
   return true;
 }
 
@@ -489,7 +584,7 @@ bool Improver::remove_edge(int t, int i, int j) {
         }
       }
     }
-  if (!(best[0][m - 1] > worst_old)) return false;
+  if (!beats(best[0][m - 1], worst_old)) return false;
   std::vector<Tet> fresh;
   std::vector<std::pair<int, int>> todo = {{0, m - 1}};
   while (!todo.empty()) {
@@ -632,15 +727,12 @@ bool Improver::smooth(int v) {
   star(v, S);
   if (S.empty()) return false;
   double worst_old = HUGE_VAL, size_cap = max_size_, lmin = HUGE_VAL;
-  int violations = 0;
-  double level = rho_;
+  const ClassesBefore before = classes_before(S);  // before v moves
   std::vector<Tet> tets;
   for (int t : S) {
     worst_old = std::min(worst_old, q_[t]);
     const Tet& T = tets_[t];
     tets.push_back(T);
-    level = std::max(level, skinny_level(T));
-    violations += violation(T);
     if (max_size_ > 0) {
       double rl, R;
       radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
@@ -652,27 +744,28 @@ bool Improver::smooth(int v) {
   lmin = std::sqrt(lmin);
   if (!(lmin > 0)) return false;
   // Each step: every tet of the star positive (exact), within max_size, and
-  // no more violations than before. The answer does not depend on the order
-  // of the tets, so the one that failed the last call is tried first.
+  // no more violations than before among the tets whose class can change.
+  // The answer does not depend on the order of the tets, so the one that
+  // failed the last call is tried first.
   std::size_t hard = 0;
   const auto valid = [&] {
-    int left = violations;
     for (std::size_t n = 0; n < tets.size(); ++n) {
       const std::size_t i = n == 0 ? hard : n <= hard ? n - 1 : n;
       const Tet& T = tets[i];
-      if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap) || skinny_level(T) > level ||
-          (left -= violation(T)) < 0) {
+      if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) || !admissible(T, size_cap)) {
         hard = i;
         return false;
       }
     }
-    return true;
+    return classes_change(S, before, tets) <= 0;
   };
   if (!(ascend(v, tets, worst_old, lmin, valid, axes) > worst_old)) return false;
+  forget(S);
   for (int t : S) {
     const Tet& T = tets_[t];
     q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
   }
+  learn(S);
   ++clock_;
   for (int t : S) touch(tets_[t]);
   ++st_.smoothed;
@@ -821,6 +914,29 @@ bool Improver::improve_tet(int t) {
   return false;
 }
 
+std::size_t Improver::fix_violations() {
+  if (!classifier_) return 0;
+  std::vector<int> list;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t)) && shape_[t] != TetClassifier::Shape::good && tet_class(int(t)) == TetClass::violation)
+      list.push_back(int(t));
+  std::size_t n = 0;
+  fixing_ = true;
+  for (int t : list) {
+    if (!poll()) break;
+    if (!alive(t) || tet_class(t) != TetClass::violation) continue;
+    if (t < int(fix_tried_.size()) && !fresh_since(fix_tried_[t], tets_[t])) continue;
+    if (improve_tet(t) || insert(t)) {
+      ++n;
+      continue;
+    }
+    if (fix_tried_.size() < tets_.size()) fix_tried_.resize(tets_.size(), -1);
+    fix_tried_[t] = clock_;
+  }
+  fixing_ = false;
+  return n;
+}
+
 bool Improver::run() {
   const double target = std::sin(kImproveTargetDeg * geometry::kPi / 180);
   const double insert_below = std::sin(kInsertBelowDeg * geometry::kPi / 180);
@@ -875,6 +991,7 @@ bool Improver::run() {
       changed += smooth(v);
     }
     changed += contract_pass();  // what the others left (improve_contract.cpp)
+    changed += fix_violations();
     if (cancelled_) return false;
     st_.passes = pass + 1;
     if (changed == 0) break;

@@ -17,7 +17,10 @@
 // tets is strictly greater than the worst of the old ones and every new tet
 // is positively oriented by CGAL's exact predicate (EPICK orientation), so
 // the new tets fill exactly the old region, the worst tet of the mesh never
-// gets worse and nothing is ever inverted.
+// gets worse and nothing is ever inverted. One exception, beyond the rule:
+// a change made to remove violations (Improver::fix_violations) may also be
+// kept when its new worst is at least sin(kImproveTargetDeg), so the worst
+// tet of the mesh never gets worse while it is below kImproveTargetDeg.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -25,8 +28,11 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <utility>
 #include <vector>
 
+#include "mesher/classify.h"
 #include "mesher/protecting_balls.h"
 #include "wqmesh/mesher.h"
 
@@ -77,8 +83,9 @@ double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3&
 /// vertices of boundary triangles only slide (slide_axes). New vertices get weight 0 (when r.mesh has
 /// weights), input_vertex -1 and nearest_neighbour = their shortest edge.
 /// Guards beyond the paper's rule (and Stellar's): with the protecting balls
-/// (set_classes), a change may not leave more violations (TetClass, with
-/// rho and theta) among its tets than there were; with max_size > 0, no new
+/// (set_classes), a change may not leave more violations (TetClass, by
+/// classify.h's TetClassifier, the code of the statistics) among the tets
+/// whose class it can change than there were; with max_size > 0, no new
 /// tet's circumradius exceeds max(max_size, the largest old one). A tet is
 /// retried only after a change touched one of its vertices (and a vertex
 /// smoothed again only after its star changed), so later passes cost what
@@ -88,8 +95,11 @@ class Improver {
   using Tet = std::array<int, 4>;
   Improver(MeshResult& r, double rho, double max_size, const std::function<bool()>& keep_going = {});
 
-  /// With the protecting balls and theta (degrees): a change may not make
-  /// more tets of its set violations (TetClass) than there were.
+  /// With the protecting balls and theta (degrees): a change may not leave
+  /// more violations (TetClass) than there were among the tets whose class
+  /// it can change: its new tets, and the tets at a vertex whose L_v (the
+  /// shortest edge at v, which "near" depends on) it changes. Computes L_v
+  /// and the shape of every tet (the phase keeps them current).
   void set_classes(const ProtectingBalls* balls, double theta_deg);
   /// Runs up to kImprovePasses passes; false when keep_going returned false
   /// (the mesh is then valid but only partly improved). Call finish() after.
@@ -133,6 +143,9 @@ class Improver {
   const ImproveStats& stats() const { return st_; }
   /// The worst min-sine over the live tets.
   double worst() const;
+  /// The class of live tet t by the phase's own L_v and shapes (good when
+  /// set_classes was not called): what classify_tets gives for it.
+  TetClass tet_class(int t) const;
 
  private:
   /// With `floor` (not NaN), the new tets must beat floor instead of the old
@@ -151,18 +164,42 @@ class Improver {
   /// The tets around v (its star), from vtet_; empty if v has none.
   void star(int v, std::vector<int>& out) const;
   bool ring(int t, int a, int b, std::vector<int>& tets, std::vector<int>& verts) const;
-  /// Whether T (at the current points) would be a violation of the classes
-  /// (TetClass: skinny by the unweighted or the weighted R/l, or a sliver,
-  /// and not near a small angle); false without balls.
-  bool violation(const Tet& T) const;
-  /// max(rho0, the unweighted R/l of T) in a run with protecting balls, rho0
-  /// if T's circumcenter lies in one (near a small angle for good) or there
-  /// are no balls (the hand-made tests). Beyond the paper: a change is kept
-  /// only if no new tet exceeds the level of the worst tet it replaces, so
-  /// the phase never makes a tet skinny (R/l > rho0) where none was; the
-  /// violation count alone cannot see this, as "near" (classify.h) depends on
-  /// the shortest edges at the vertices, which later changes move.
-  double skinny_level(const Tet& T) const;
+  // The class guard (beyond the paper; classify.h's TetClassifier). A
+  // change replaces the tets `old` by `fresh`; the classes it can change are
+  // those of `fresh` and of the tets outside `old` at a vertex whose L_v it
+  // changes (only "near" depends on L_v, so only tets of a bad shape count).
+  /// What the guard needs from before a change: the violations among `old`
+  /// and, per vertex of `old`, its shortest edge among old's tets (squared),
+  /// both at the current points (taken before a smoothing step moves one).
+  struct ClassesBefore {
+    int violations = 0;
+    std::vector<std::pair<int, double>> inside;
+  };
+  ClassesBefore classes_before(const std::vector<int>& old) const;
+  /// How many more violations there are when `old` is replaced by `fresh`
+  /// at the current points (negative: fewer; 0 without balls).
+  int classes_change(const std::vector<int>& old, const ClassesBefore& before, const std::vector<Tet>& fresh) const;
+  /// The min-sine rule: a change whose new worst is worst_new may replace
+  /// tets whose worst is worst_old when it is strictly greater; while
+  /// fixing_ (a violation worked on), also when it is at least
+  /// sin(kImproveTargetDeg) (see fix_violations).
+  bool beats(double worst_new, double worst_old) const;
+  /// Works on the violations left (TetClass::violation): flips, then the
+  /// insertion of a Steiner point (first candidate: the circumcenter, as
+  /// rule 4/5 of REFINE inserts the circumcenter of a skinny tet outside the
+  /// protecting balls). Beyond the phase's min-sine rule: such a change must
+  /// remove violations, and its new worst min-sine must beat the old one or
+  /// be at least sin(kImproveTargetDeg), so the worst tet of the mesh never
+  /// gets worse while it is below kImproveTargetDeg. Returns the changes.
+  std::size_t fix_violations();
+  /// L_v^2 of v from its star at the current points (+infinity without one),
+  /// ignoring the tets of `skip`.
+  double shortest_at(int v, const std::vector<int>& skip = {}) const;
+  /// The class upkeep of a commit: forget() before the tets `ids` change or
+  /// die, learn() after (their shapes, the bad-tet counts at their vertices
+  /// and L_v of their vertices).
+  void forget(const std::vector<int>& ids);
+  void learn(const std::vector<int>& ids);
   /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
   bool admissible(const Tet& T, double size_cap) const;
   bool poll();
@@ -177,8 +214,15 @@ class Improver {
 
   MeshResult& r_;
   double rho_, max_size_;
-  const ProtectingBalls* balls_ = nullptr;
-  double theta_deg_ = 0, sin_theta_ = 0;
+  const ProtectingBalls* balls_ = nullptr;     ///< set_classes'
+  std::unique_ptr<TetClassifier> classifier_;  ///< with set_classes
+  /// L2_[v]: L_v^2 (classify.h), current; shape_[t]: the shape of live tet
+  /// t; bad_at_[v]: how many live tets at v are of a bad shape.
+  std::vector<double> L2_;
+  std::vector<TetClassifier::Shape> shape_;
+  std::vector<int> bad_at_;
+  bool fixing_ = false;  ///< in fix_violations()
+  std::vector<std::int64_t> fix_tried_;
   std::function<bool()> keep_going_;  ///< a copy: callers pass temporaries
   std::vector<Point3>& P_;
   std::vector<Tet> tets_;
