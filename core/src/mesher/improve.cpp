@@ -882,25 +882,7 @@ bool Improver::insert(int t) {
     }
     P_.pop_back();
   }
-  if (best_fresh.empty()) return false;
-  const std::size_t live = tets_.size() - free_slots_.size() + best_fresh.size() - best_old.size();
-  if (double(live) > std::max(kMaxTetGrowth * double(initial_tets_), double(initial_tets_ + kMinTetSlack)))
-    return false;
-  P_.push_back(best_p);
-  vtet_.push_back(-1);
-  fixed_.push_back(0);
-  if (!replace(best_old, best_fresh)) {
-    P_.pop_back();
-    vtet_.pop_back();
-    fixed_.pop_back();
-    return false;
-  }
-  r_.input_vertex.push_back(-1);
-  if (!r_.mesh.weights.empty()) r_.mesh.weights.push_back(0);
-  r_.nearest_neighbour.push_back(0);  // set in finish()
-  inserted_.push_back(p_id);
-  ++st_.inserted;
-  return true;
+  return !best_fresh.empty() && add_point(best_p, best_old, best_fresh, {}, -1);
 }
 
 bool Improver::improve_tet(int t) {

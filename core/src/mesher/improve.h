@@ -283,6 +283,13 @@ class Improver {
   /// Computes slide_, facet_axes_, facet_corner_ and closed_ (from bnd_, the
   /// mesh's boundary_facet and the input vertices); called by the constructor.
   void init_slides();
+  /// Adds point p (index P_.size()) replacing the tets `old` by `fresh` and
+  /// the boundary triangles by `boundary` (replace()), unless the mesh would
+  /// then exceed the tet budget (kMaxTetGrowth, kMinTetSlack); `facet` >= 0:
+  /// p lies on that facet (it then slides along its axes, and the new
+  /// boundary triangles are its). Used by insert() and insert_boundary().
+  bool add_point(const Point3& p, const std::vector<int>& old, const std::vector<Tet>& fresh,
+                 const std::vector<std::pair<int, Tri3>>& boundary, int facet);
   /// Whether `fresh` holds more tets under sin(kInsertBelowDeg) than the
   /// tets `old` (beyond accept(): a point on a facet near a small input angle
   /// would otherwise multiply the tets the angle keeps bad).

@@ -194,29 +194,36 @@ bool Improver::insert_boundary(int t) {
         P_.pop_back();
       }
   }
-  if (best_fresh.empty()) return false;
-  const std::size_t live = tets_.size() - free_slots_.size() + best_fresh.size() - best_old.size();
+  return !best_fresh.empty() && add_point(best_p, best_old, best_fresh, best_fan, best_f);
+}
+
+bool Improver::add_point(const Point3& p, const std::vector<int>& old, const std::vector<Tet>& fresh,
+                         const std::vector<std::pair<int, Tri3>>& boundary, int facet) {
+  const std::size_t live = tets_.size() - free_slots_.size() + fresh.size() - old.size();
   if (double(live) > std::max(kMaxTetGrowth * double(initial_tets_), double(initial_tets_ + kMinTetSlack)))
     return false;
-  P_.push_back(best_p);
+  const int p_id = int(P_.size());
+  P_.push_back(p);
   vtet_.push_back(-1);
-  fixed_.push_back(1);
+  fixed_.push_back(facet >= 0);
   slide_.resize(P_.size(), 0);
-  slide_[p_id] = std::uint8_t(facet_axes_[best_f]);
-  if (!replace(best_old, best_fresh, best_fan)) {
+  if (facet >= 0) slide_[p_id] = std::uint8_t(facet_axes_[facet]);
+  if (!replace(old, fresh, boundary)) {
     P_.pop_back();
     vtet_.pop_back();
     fixed_.pop_back();
     slide_.pop_back();
     return false;
   }
-  r_.mesh.boundary_facet.resize(bnd_.size(), best_f);
+  if (facet >= 0) {
+    r_.mesh.boundary_facet.resize(bnd_.size(), facet);
+    ++st_.inserted_on_boundary;
+  }
   r_.input_vertex.push_back(-1);
   if (!r_.mesh.weights.empty()) r_.mesh.weights.push_back(0);
   r_.nearest_neighbour.push_back(0);  // set in finish()
   inserted_.push_back(p_id);
   ++st_.inserted;
-  ++st_.inserted_on_boundary;
   return true;
 }
 
