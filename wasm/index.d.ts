@@ -464,6 +464,8 @@ export interface MeshStats {
     slid: number;
     /** Of `inserted`, points inserted on a facet (with the facet's coordinate off its axes copied exactly). */
     inserted_on_boundary: number;
+    /** Multi-face removals of at least two faces (the inverse of edge removal). */
+    multi_face_removals: number;
     min_dihedral_before: number;
     min_dihedral_after: number;
     slivers_before: number;

@@ -81,6 +81,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("ran", im.ran).field("passes", im.passes);
   j.field("flips23", im.flips23).field("flips32", im.flips32).field("flips44", im.flips44);
   j.field("flips22", im.flips22).field("edge_removals", im.edge_removals);
+  j.field("multi_face_removals", im.multi_face_removals);
   j.field("smoothed", im.smoothed).field("inserted", im.inserted).field("contractions", im.contractions);
   j.field("slid", im.slid).field("inserted_on_boundary", im.inserted_on_boundary);
   j.field("min_dihedral_before", im.min_dihedral_before).field("min_dihedral_after", im.min_dihedral_after);

@@ -73,6 +73,7 @@ struct Config {
 };
 
 int slot(const std::array<int, 4>& t, int v) { return int(std::find(t.begin(), t.end(), v) - t.begin()); }
+bool has_vertex(const std::array<int, 4>& t, int v) { return slot(t, v) < 4; }
 
 void expect_positive(const MeshResult& r) {
   for (const auto& t : r.mesh.tets)
@@ -593,10 +594,78 @@ std::vector<std::string> models() {
   return out;
 }
 
+// A regular pentagon p0..p4 in z = 0 (radius 1) fanned from p0 into three
+// faces, each sandwiched between the apexes a = (0, 0, h) and b = (0, 0, -h):
+// six flat tets. Around the new edge ab (through the middle face) the five
+// tets (p_i, p_i+1, b, a) are better (min-sine 0.35 -> 0.65 at h = 0.3).
+Config pentagon_sandwich(bool center_vertex) {
+  Config c;
+  const double h = 0.3;
+  for (int i = 0; i < 5; ++i)
+    c.r.mesh.vertices.push_back({{std::cos(2 * geometry::kPi * i / 5), std::sin(2 * geometry::kPi * i / 5), 0}});
+  c.r.mesh.vertices.push_back({{0, 0, h}});   // a = 5
+  c.r.mesh.vertices.push_back({{0, 0, -h}});  // b = 6
+  if (center_vertex) {
+    // A vertex c = 7 at the middle, the five faces (c, p_i, p_i+1) around it.
+    c.r.mesh.vertices.push_back({{0, 0, 0}});
+    for (int i = 0; i < 5; ++i)
+      for (int apex : {5, 6}) c.add_tet(7, i, (i + 1) % 5, apex);
+  } else {
+    for (int i = 1; i < 4; ++i)
+      for (int apex : {5, 6}) c.add_tet(0, i, i + 1, apex);
+  }
+  c.close();
+  return c;
+}
+
+TEST(Improve, MultiFaceRemovalReplacesThreeSandwichedFacesByTheTetsAroundTheNewEdge) {
+  Config c = pentagon_sandwich(false);
+  const double before = c.worst(), volume = c.volume();
+  Improver im(c.r, 2.2, 0);
+  // From the face (p0, p1, p2) of its tet with a: the 2-3 flip alone would
+  // invert a tet (ab misses that face), the three faces together do not.
+  const auto& t = im.tets()[0];
+  ASSERT_TRUE(has_vertex(t, 5));
+  EXPECT_FALSE(im.flip23(0, slot(t, 5)));
+  ASSERT_TRUE(im.remove_faces(0, slot(im.tets()[0], 5)));
+  EXPECT_EQ(im.stats().multi_face_removals, 1u);
+  EXPECT_EQ(im.stats().changes(), 1u);
+  im.finish();
+  ASSERT_EQ(c.r.mesh.tets.size(), 5u);
+  for (const auto& T : c.r.mesh.tets) EXPECT_TRUE(slot(T, 5) < 4 && slot(T, 6) < 4) << "every tet holds edge ab";
+  EXPECT_GT(c.worst(), before);
+  EXPECT_NEAR(c.worst(), 0.652, 1e-3);
+  EXPECT_NEAR(c.volume(), volume, 1e-12);
+  expect_positive(c.r);
+}
+
+TEST(Improve, MultiFaceRemovalNeverRemovesAVertex) {
+  // The five faces around the middle vertex c, sandwiched between a and b:
+  // the new edge ab would pass through c, so every choice from a face with
+  // the apexes a and b is refused and nothing changes. (Other apex pairs,
+  // say p2 and p4 around the faces (c, p3, a) and (c, p3, b), are legitimate
+  // removals, not tried here.)
+  Config c = pentagon_sandwich(true);
+  const auto tets = c.r.mesh.tets;
+  Improver im(c.r, 2.2, 0);
+  int tried = 0;
+  for (int t = 0; t < int(tets.size()); ++t)
+    for (int k = 0; k < 4; ++k)
+      if (tets[t][k] == 5 || tets[t][k] == 6) {
+        EXPECT_FALSE(im.remove_faces(t, k)) << "tet " << t << " face " << k;
+        ++tried;
+      }
+  EXPECT_EQ(tried, 10);
+  EXPECT_EQ(im.stats().multi_face_removals, 0u);
+  im.finish();
+  EXPECT_EQ(c.r.mesh.tets, tets);
+}
+
 TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
   const auto files = models();
   ASSERT_FALSE(files.empty());
   std::size_t inserted_on_boundary = 0;
+  std::size_t multi_face = 0;
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
     const invariants::Input in = invariants::load(f);
@@ -684,15 +753,19 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
     inserted_on_boundary += r.improve.inserted_on_boundary;
     std::printf(
         "[ improve  ] %s: min dihedral %.3g -> %.3g deg, tets %zu -> %zu; 2-3 %zu, 3-2 %zu, 4-4 %zu, "
-        "2-2 %zu, edge removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu (on facets %zu), "
-        "contractions %zu, passes %d\n",
+        "2-2 %zu, edge removals %zu, multi-face removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu "
+        "(on facets %zu), contractions %zu, passes %d\n",
         fs::path(f).filename().c_str(), r.improve.min_dihedral_before, r.improve.min_dihedral_after,
         plain.mesh.tets.size(), r.mesh.tets.size(), r.improve.flips23, r.improve.flips32, r.improve.flips44,
-        r.improve.flips22, r.improve.edge_removals, r.improve.smoothed, moved, r.improve.inserted,
-        r.improve.inserted_on_boundary, r.improve.contractions, r.improve.passes);
+        r.improve.flips22, r.improve.edge_removals, r.improve.multi_face_removals, r.improve.smoothed, moved,
+        r.improve.inserted, r.improve.inserted_on_boundary, r.improve.contractions, r.improve.passes);
+    multi_face += r.improve.multi_face_removals;
   }
   // thin_wedge.off (an example model, always there) gets points on facets.
   EXPECT_GT(inserted_on_boundary, 0u);
+  // The pass loop reaches multi-face removal (the example models alone
+  // have some: bracket, edge_facet, slit, thin_wedge).
+  EXPECT_GT(multi_face, 0u);
 }
 
 // ---- the class guard (Improver::classes_hold, classify.h's TetClassifier) ----

@@ -130,12 +130,14 @@ struct ImproveStats {
   /// Of `smoothed`, the moves of boundary vertices (slides along an axis of
   /// their facets); of `inserted`, the points inserted on a facet.
   std::size_t slid = 0, inserted_on_boundary = 0;
+  std::size_t multi_face_removals = 0;  ///< of at least two faces (one is a 2-3 flip)
   double min_dihedral_before = 0, min_dihedral_after = 0;
   std::size_t slivers_before = 0, skinny_before = 0, near_small_angle_before = 0, violations_before = 0;
   std::size_t tets_before = 0;  ///< the tets of the mesh before it
   /// Operations accepted in all (a mesh with none is the input mesh as it was).
   std::size_t changes() const {
-    return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted + contractions;
+    return flips23 + flips32 + flips44 + flips22 + edge_removals + smoothed + inserted + contractions +
+           multi_face_removals;
   }
 };
 

@@ -891,6 +891,8 @@ bool Improver::improve_tet(int t) {
     if (alive(t) && remove_edge(t, e[0], e[1])) return true;
   for (int k = 0; k < 4; ++k)
     if (alive(t) && nb_[t][k] >= 0 && flip23(t, k)) return true;
+  for (int k = 0; k < 4; ++k)
+    if (alive(t) && nb_[t][k] >= 0 && remove_faces(t, k)) return true;
   for (const auto& e : kEdge)
     if (alive(t) && flip22(t, e[0], e[1])) return true;
   return false;

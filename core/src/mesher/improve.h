@@ -4,7 +4,7 @@
 // Improvement" (IMR 2007): the objective is the smallest sine of the six
 // dihedral angles of a tet (min-sine), raised by topological operations on
 // interior faces and edges (2-3 flips; edge removal, whose rings of 3 and 4
-// tets are the 3-2 and 4-4 flips), 2-2 flips of boundary triangles inside
+// tets are the 3-2 and 4-4 flips; multi-face removal), 2-2 flips of boundary triangles inside
 // one input facet, smoothing of interior Steiner vertices and insertion of
 // interior Steiner points. Unlike Stellar, the boundary is kept as it is
 // (only exactly coplanar 2-2 flips inside one facet change it), a vertex on
@@ -365,6 +365,40 @@ class Improver {
   /// Sets both floors from the live tets.
   void set_contract_floors();
   int contract_passes_ = 0;
+
+  // ---- Multi-face removal (improve_faces.cpp; Klingner and Shewchuk 2007,
+  // the inverse of edge removal). The faces sandwiched between two vertices
+  // a and b (each face f interior, with the tets (f, a) and (f, b)) that form
+  // a tree grown from one face are removed, and the region of their 2F tets
+  // is filled by the F + 2 tets (p, q, b, a), one per edge pq of the
+  // polygon they triangulate, around the new edge ab. Which faces: the
+  // dynamic programme over the tree (Shewchuk's) that maximises the worst
+  // new tet, a face taken only when strictly better than stopping at its
+  // edge. The change obeys the phase's contract (accept, replace: exact
+  // orientation, the guards, the same outer faces, no vertex lost); it never
+  // adds tets (F >= 2: a single face is the 2-3 flip, flip23).
+ public:
+  /// Multi-face removal from t's face opposite its vertex k (an interior
+  /// face) with a = that vertex and b the apex beyond the face; true when a
+  /// change of at least two faces was accepted.
+  bool remove_faces(int t, int k);
+  /// The most sandwiched faces one removal considers.
+  static constexpr int kMaxSandwich = 16;
+
+ private:
+  struct Sandwich {
+    std::array<int, 3> u;     ///< oriented: (u0, u1, u2, a) is positive
+    std::array<int, 3> key;   ///< u sorted
+    int ta, tb;               ///< the tets (u, a) and (u, b)
+    std::array<int, 3> next;  ///< per edge u_e u_(e+1): the chosen face beyond it, or -1
+    double value;             ///< the best worst new tet of its subtree
+  };
+  /// The dynamic programme at face f of `faces` (edge `back` leads to its
+  /// parent, -1 at the root): grows the tree beyond its other edges, sets
+  /// next[] and value, returns value.
+  double grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b);
+  /// t's vertex other than x, y and z (-1 if none).
+  int other_vertex(int t, int x, int y, int z) const;
 };
 
 /// The phase on a finished, conforming run's extracted mesh r: records the

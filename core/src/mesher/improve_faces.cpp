@@ -1,0 +1,111 @@
+// wqmesh: multi-face removal in the improvement phase (beyond the paper:
+// Klingner and Shewchuk, "Aggressive Tetrahedral Mesh Improvement", IMR 2007,
+// after de Cougny and Shephard; the inverse of edge removal). See improve.h,
+// "Multi-face removal", for the contract.
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <algorithm>
+#include <cmath>
+
+#include "mesher/improve.h"
+
+namespace wqmesh::mesher {
+
+namespace {
+
+// The face of a positively oriented tet (v0, v1, v2, v3) opposite vertex k,
+// oriented so that (face, v_k) is positive (the reverse of the outward face).
+constexpr int kInward[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+
+}  // namespace
+
+int Improver::other_vertex(int t, int x, int y, int z) const {
+  for (int v : tets_[t])
+    if (v != x && v != y && v != z) return v;
+  return -1;
+}
+
+double Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b) {
+  // Edge e of face (u0, u1, u2) runs from u_e to u_(e+1); the face beyond it
+  // shares the edge reversed. `back` is the edge to the parent (-1 at the
+  // root).
+  double value = HUGE_VAL;
+  for (int e = 0; e < 3; ++e) {
+    if (e == back) continue;
+    const int p = faces[f].u[e], q = faces[f].u[(e + 1) % 3], r = faces[f].u[(e + 2) % 3];
+    // Stopping here leaves the edge on the polygon's boundary: the new tet
+    // (p, q, b, a) around the new edge ab.
+    const double stop = min_sine(P_[p], P_[q], P_[b], P_[a]);
+    double cont = -HUGE_VAL;
+    int child = -1;
+    if (int(faces.size()) < kMaxSandwich) {
+      // The face beyond edge pq is sandwiched when the tets across the faces
+      // (p, q, a) and (p, q, b) share their fourth vertex w.
+      const int ta = faces[f].ta, tb = faces[f].tb;
+      const int na = nb_[ta][slot(ta, r)], nb = nb_[tb][slot(tb, r)];
+      const int w = na >= 0 ? other_vertex(na, p, q, a) : -1;
+      if (nb >= 0 && w >= 0 && w != b && other_vertex(nb, p, q, b) == w) {
+        // Oriented with a on its positive side, it must read (q, p, w).
+        const int s = slot(na, a);
+        std::array<int, 3> u = {{tets_[na][kInward[s][0]], tets_[na][kInward[s][1]], tets_[na][kInward[s][2]]}};
+        while (u[2] != w) u = {{u[1], u[2], u[0]}};
+        std::array<int, 3> key = u;
+        std::sort(key.begin(), key.end());
+        bool seen = false;
+        for (const Sandwich& g : faces) seen = seen || g.key == key;
+        if (u[0] == q && u[1] == p && !seen) {
+          child = int(faces.size());
+          faces.push_back({{{q, p, w}}, key, na, nb, {{-1, -1, -1}}, 0});
+          cont = grow_sandwich(faces, child, 0, a, b);
+        }
+      }
+    }
+    // Continue only when strictly better: fewer tets on a tie.
+    faces[f].next[e] = cont > stop ? child : -1;
+    value = std::min(value, std::max(stop, cont));
+  }
+  faces[f].value = value;
+  return value;
+}
+
+bool Improver::remove_faces(int t, int k) {
+  const int n = nb_[t][k];
+  if (n < 0) return false;
+  const int a = tets_[t][k];
+  const std::array<int, 3> u0 = {{tets_[t][kInward[k][0]], tets_[t][kInward[k][1]], tets_[t][kInward[k][2]]}};
+  const int b = other_vertex(n, u0[0], u0[1], u0[2]);
+  if (b < 0) return false;
+  std::array<int, 3> key = u0;
+  std::sort(key.begin(), key.end());
+  std::vector<Sandwich> faces = {{u0, key, t, n, {{-1, -1, -1}}, 0}};
+  grow_sandwich(faces, 0, -1, a, b);
+  // The chosen faces (a tree from the root) and the polygon's boundary
+  // edges, each giving the new tet (p, q, b, a).
+  std::vector<int> old;
+  std::vector<Tet> fresh;
+  std::vector<int> todo = {0};
+  double worst_old = HUGE_VAL;
+  while (!todo.empty()) {
+    const int f = todo.back();
+    todo.pop_back();
+    old.push_back(faces[f].ta);
+    old.push_back(faces[f].tb);
+    worst_old = std::min({worst_old, q_[faces[f].ta], q_[faces[f].tb]});
+    for (int e = 0; e < 3; ++e) {
+      if (f != 0 && e == 0) continue;  // the edge to the parent
+      if (faces[f].next[e] >= 0) {
+        todo.push_back(faces[f].next[e]);
+      } else {
+        fresh.push_back({{faces[f].u[e], faces[f].u[(e + 1) % 3], b, a}});
+      }
+    }
+  }
+  // One face is the 2-3 flip (flip23); the dynamic programme's worst must
+  // beat the old set's.
+  if (old.size() < 4 || !(faces[0].value > worst_old)) return false;
+  double w;
+  if (!accept(old, fresh, w) || !replace(old, fresh)) return false;
+  ++st_.multi_face_removals;
+  return true;
+}
+
+}  // namespace wqmesh::mesher
