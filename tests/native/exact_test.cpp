@@ -2,7 +2,9 @@
 // Tests of exact.h: each of exact::sign's three stages (error-bounded double,
 // expansion, MP_Float) against MP_Float's exact value, on random, nearly
 // degenerate and exactly degenerate inputs at several scales, and the
-// expansion's fallback where two-product cannot stay exact.
+// expansion's fallback where two-product cannot stay exact; ExactRing (the
+// wasm build's exact ring type of Epick) in CGAL's own predicates against
+// MP_Float.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,7 +12,10 @@
 #include <random>
 #include <vector>
 
+#include <CGAL/Simple_cartesian.h>
+
 #include "exact.h"
+#include "exact_ring.h"
 
 namespace wqmesh {
 namespace {
@@ -216,6 +221,41 @@ TEST(Exact, ErrorBoundOfAnOverflowNeverDecides) {
   EXPECT_FALSE((big * big - big * big).decided());
   EXPECT_FALSE((Approx(0) * (big * big)).decided());
   EXPECT_TRUE((big - Approx(1e299)).decided());
+}
+
+TEST(Exact, ExactRingGivesMpFloatsAnswersInCgalsPredicates) {
+  using KR = CGAL::Simple_cartesian<exact::ExactRing>;
+  using KM = CGAL::Simple_cartesian<MP>;
+  std::mt19937_64 g(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const KR kr;
+  const KM km;
+  int zeros = 0, cases = 0;
+  for (const double scale : {1.0, 0x1p-30, 0x1p40, 0x1p-520, 0x1p510}) {
+    for (int k = 0; k < 300; ++k) {
+      // A lattice cube's corners and centre (cospherical, coplanar) and a
+      // random point; weights 0 or one random weight.
+      const double h = scale * (1 + std::fabs(u(g))), x = scale * u(g), y = scale * u(g), z = scale * u(g);
+      std::vector<std::array<double, 4>> p;
+      for (int c = 0; c < 8; ++c) p.push_back({x + (c & 1) * h, y + (c >> 1 & 1) * h, z + (c >> 2) * h, 0});
+      p.push_back({scale * u(g), scale * u(g), scale * u(g), scale * scale * std::fabs(u(g))});
+      auto pr = [&](int i) { return KR::Weighted_point_3(KR::Point_3(p[i][0], p[i][1], p[i][2]), p[i][3]); };
+      auto pm = [&](int i) { return KM::Weighted_point_3(KM::Point_3(p[i][0], p[i][1], p[i][2]), p[i][3]); };
+      int i[5];
+      for (int& v : i) v = int(g() % 9);
+      ++cases;
+      const auto o = km.orientation_3_object()(pm(i[0]).point(), pm(i[1]).point(), pm(i[2]).point(), pm(i[3]).point());
+      if (o == CGAL::COPLANAR) ++zeros;
+      ASSERT_EQ(kr.orientation_3_object()(pr(i[0]).point(), pr(i[1]).point(), pr(i[2]).point(), pr(i[3]).point()), o);
+      ASSERT_EQ(kr.coplanar_orientation_3_object()(pr(i[0]).point(), pr(i[1]).point(), pr(i[2]).point()),
+                km.coplanar_orientation_3_object()(pm(i[0]).point(), pm(i[1]).point(), pm(i[2]).point()));
+      ASSERT_EQ(kr.power_side_of_oriented_power_sphere_3_object()(pr(i[0]), pr(i[1]), pr(i[2]), pr(i[3]), pr(i[4])),
+                km.power_side_of_oriented_power_sphere_3_object()(pm(i[0]), pm(i[1]), pm(i[2]), pm(i[3]), pm(i[4])));
+      ASSERT_EQ(kr.compare_power_distance_3_object()(pr(i[0]).point(), pr(i[1]), pr(i[2])),
+                km.compare_power_distance_3_object()(pm(i[0]).point(), pm(i[1]), pm(i[2])));
+    }
+  }
+  EXPECT_GT(zeros, cases / 10);  // the degenerate configurations are reached
 }
 
 }  // namespace
