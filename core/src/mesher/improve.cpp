@@ -817,18 +817,8 @@ bool Improver::insert(int t) {
     if (cur < 0) continue;
     // The cavity: tets whose circumsphere holds p, grown from cur, then
     // grown further until every outer face sees p (star-shaped).
-    std::vector<int> cav = {cur};
-    auto in_sphere = [&](int x) {
-      const Tet& T = tets_[x];
-      double s2;
-      const Point3 c = geometry::circumcenter(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], s2);
-      return std::isfinite(s2) && geometry::dist2(c, p) < s2;
-    };
-    for (std::size_t i = 0; i < cav.size() && int(cav.size()) < kMaxCavity; ++i)
-      for (int k = 0; k < 4; ++k) {
-        const int n = nb_[cav[i]][k];
-        if (n >= 0 && std::find(cav.begin(), cav.end(), n) == cav.end() && in_sphere(n)) cav.push_back(n);
-      }
+    std::vector<int> cav;
+    sphere_cavity(cur, p, cav);
     P_.push_back(p);
     std::vector<Tet> fresh;
     bool ok = false;

@@ -294,6 +294,9 @@ class Improver {
   /// tets `old` (beyond accept(): a point on a facet near a small input angle
   /// would otherwise multiply the tets the angle keeps bad).
   bool more_bad_tets(const std::vector<int>& old, const std::vector<Tet>& fresh) const;
+  /// The tets whose circumsphere holds p strictly, grown from t through
+  /// inner faces (at most kMaxCavity; insert() and boundary_cavity()).
+  void sphere_cavity(int t, const Point3& p, std::vector<int>& cav) const;
   /// insert_boundary's cavity for p on boundary triangle b (facet f) of t:
   /// the old tets, the new ones (p has index P_.size()) and the fan of
   /// boundary triangles (index, triangle; indices from bnd_.size() are new);

@@ -235,9 +235,7 @@ bool Improver::more_bad_tets(const std::vector<int>& old, const std::vector<Tet>
   return count < 0;
 }
 
-bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
-                               std::vector<std::pair<int, Tri3>>& fan) const {
-  // The tets whose circumsphere holds p, grown from t through inner faces.
+void Improver::sphere_cavity(int t, const Point3& p, std::vector<int>& cav) const {
   cav.assign(1, t);
   auto in_sphere = [&](int x) {
     const Tet& T = tets_[x];
@@ -250,6 +248,12 @@ bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector
       const int n = nb_[cav[i]][k];
       if (n >= 0 && std::find(cav.begin(), cav.end(), n) == cav.end() && in_sphere(n)) cav.push_back(n);
     }
+}
+
+bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
+                               std::vector<std::pair<int, Tri3>>& fan) const {
+  // The tets whose circumsphere holds p, grown from t through inner faces.
+  sphere_cavity(t, p, cav);
   const int p_id = int(P_.size());
   for (int round = 0; round < kMaxCavity; ++round) {
     fresh.clear();
