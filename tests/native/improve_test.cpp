@@ -836,28 +836,41 @@ TEST(Improve, AFlipThatMakesASkinnyTetOutsideTheBallsIsRefused) {
   EXPECT_TRUE(in.flip23(0, slot(in.tets()[0], 3)));
 }
 
-TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
-  // Two good tets over the triangle 012 whose 2-3 flip (taken here without
-  // the guard, as if PUMP had left its result) raises the worst min-sine
-  // 0.401 -> 0.419 but makes a skinny tet (R/l 2.25) outside the balls.
+// Two good tets over the triangle 012 whose 2-3 flip (taken without the
+// guard, as if PUMP had left its result) raises the worst min-sine 0.401 ->
+// 0.419 but makes a skinny tet (R/l 2.25) outside the balls; with
+// `with_far_tet`, also a flat tet (min-sine about 0.29) inside a protecting
+// ball far away, near a small angle, so not a violation.
+static Config violation_left_by_pump(bool with_far_tet) {
   Config c;
   c.r.mesh.vertices = {
       {{-0.2, -0.75, 0}}, {{0.95, 0.65, 0}}, {{-0.6, 0.2, 0}}, {{0.175, 0.125, 0.3}}, {{0.45, 0.2, -0.45}}};
   c.add_tet(0, 1, 2, 3);
   c.add_tet(0, 1, 2, 4);
-  c.close();
-  {
-    Improver im(c.r, 2.2, 0);
-    ASSERT_TRUE(im.flip23(0, slot(im.tets()[0], 3)));
-    im.finish();
+  if (with_far_tet) {
+    const double s = 0.02;
+    for (const Point3& p :
+         {Point3{{0, 0, 0}}, Point3{{1, 0, 0}}, Point3{{0.5, 0.8660254, 0}}, Point3{{0.5, 0.2886751, 0.088}}})
+      c.r.mesh.vertices.push_back({{5 + s * p[0], 5 + s * p[1], 5 + s * p[2]}});
+    c.add_tet(5, 6, 7, 8);
   }
+  c.close();
+  Improver im(c.r, 2.2, 0);
+  EXPECT_TRUE(im.flip23(0, slot(im.tets()[0], 3)));
+  im.finish();
+  return c;
+}
+
+TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
+  Config c = violation_left_by_pump(true);
   const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
   ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 1u);
-  // No tet is under the phase's target angle, so only fix_violations works
-  // on it: the 3-2 flip back removes the violation, its worst min-sine
-  // (0.401) below the old one but above sin(kImproveTargetDeg).
+  // No tet of the pair is under the phase's target angle, so only
+  // fix_violations works on it: the 3-2 flip back removes the violation,
+  // its worst min-sine (0.401) below the pair's (0.419) but above
+  // sin(kImproveTargetDeg) and above the mesh's worst (the far tet's).
   const double before = worst(c.r.mesh);
-  ASSERT_GT(before, std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180));
+  ASSERT_LT(before, 0.4);
   // Without the protecting balls (no classes) the phase leaves it.
   Config plain = c;
   {
@@ -873,7 +886,24 @@ TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
   im.finish();
   EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
   EXPECT_EQ(c.r.improve.flips32, 1u);
-  EXPECT_GE(worst(c.r.mesh), std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180));
+  EXPECT_GE(worst(c.r.mesh), before);
+  expect_positive(c.r);
+}
+
+TEST(Improve, AViolationIsNotFixedAtTheCostOfTheMeshsWorstTet) {
+  // The same pair alone: the flip back would lower the worst tet of the
+  // whole mesh (0.419 -> 0.401), which no change may do (fix_floor_).
+  Config c = violation_left_by_pump(false);
+  const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
+  ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 1u);
+  const double before = worst(c.r.mesh);
+  const mesher::ProtectingBalls balls = index_of({far});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  ASSERT_TRUE(im.run());
+  im.finish();
+  EXPECT_GE(worst(c.r.mesh), before);
+  EXPECT_EQ(c.r.improve.flips32, 0u);
   expect_positive(c.r);
 }
 

@@ -371,7 +371,8 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
 }
 
 bool Improver::beats(double worst_new, double worst_old) const {
-  return worst_new > worst_old || (fixing_ && worst_new >= std::sin(kImproveTargetDeg * geometry::kPi / 180));
+  return worst_new > worst_old ||
+         (fixing_ && worst_new >= std::sin(kImproveTargetDeg * geometry::kPi / 180) && worst_new > fix_floor_);
 }
 
 bool Improver::admissible(const Tet& T, double size_cap) const {
@@ -894,6 +895,15 @@ std::size_t Improver::fix_violations() {
   for (std::size_t t = 0; t < tets_.size(); ++t)
     if (alive(int(t)) && shape_[t] != TetClassifier::Shape::good && tet_class(int(t)) == TetClass::violation)
       list.push_back(int(t));
+  if (list.empty()) return 0;
+  double worst_sine = HUGE_VAL, smallest_deg = 180;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) {
+      const Tet& T = tets_[t];
+      worst_sine = std::min(worst_sine, q_[t]);
+      smallest_deg = std::min(smallest_deg, tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    }
+  fix_floor_ = std::max(worst_sine, std::sin(smallest_deg * geometry::kPi / 180));
   std::size_t n = 0;
   fixing_ = true;
   for (int t : list) {
@@ -901,6 +911,16 @@ std::size_t Improver::fix_violations() {
     if (!alive(t) || tet_class(t) != TetClass::violation) continue;
     if (t < int(fix_tried_.size()) && !fresh_since(fix_tried_[t], tets_[t])) continue;
     if (improve_tet(t) || insert(t)) {
+      ++n;
+      continue;
+    }
+    // Then the removal of one of its Steiner vertices (a skinny tet's short
+    // edge; contract_vertex() under the same relaxed rule and guards).
+    const Tet T = tets_[t];
+    bool contracted = false;
+    for (int v : T)
+      if (!contracted && contract_vertex(v)) contracted = true;
+    if (contracted) {
       ++n;
       continue;
     }

@@ -187,10 +187,13 @@ class Improver {
   /// Works on the violations left (TetClass::violation): flips, then the
   /// insertion of a Steiner point (first candidate: the circumcenter, as
   /// rule 4/5 of REFINE inserts the circumcenter of a skinny tet outside the
-  /// protecting balls). Beyond the phase's min-sine rule: such a change must
+  /// protecting balls), then the contraction of one of its Steiner vertices
+  /// (contract_vertex). Beyond the phase's min-sine rule: such a change must
   /// remove violations, and its new worst min-sine must beat the old one or
-  /// be at least sin(kImproveTargetDeg), so the worst tet of the mesh never
-  /// gets worse while it is below kImproveTargetDeg. Returns the changes.
+  /// be at least sin(kImproveTargetDeg) and beat fix_floor_ (the mesh's
+  /// worst, by min-sine and by smallest dihedral angle, when the fixing
+  /// starts), so the worst tet of the mesh never gets worse by either
+  /// measure. Returns the changes.
   std::size_t fix_violations();
   /// L_v^2 of v from its star at the current points (+infinity without one),
   /// ignoring the tets of `skip`.
@@ -222,6 +225,11 @@ class Improver {
   std::vector<TetClassifier::Shape> shape_;
   std::vector<int> bad_at_;
   bool fixing_ = false;  ///< in fix_violations()
+  /// While fixing_: max(the worst min-sine of the mesh, the sine of its
+  /// smallest dihedral angle) at the start of fix_violations(); a relaxed
+  /// change must beat it (a new tet whose min-sine beats sin(D) has every
+  /// dihedral angle above D).
+  double fix_floor_ = 0;
   std::vector<std::int64_t> fix_tried_;
   std::function<bool()> keep_going_;  ///< a copy: callers pass temporaries
   std::vector<Point3>& P_;
