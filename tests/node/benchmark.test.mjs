@@ -4,7 +4,9 @@
 // of every model gets a verdict ("met", "not met", or "n/a" where it does not
 // apply), and each verdict agrees with the figures of the all-tools table
 // (both tools measured by `wqmesh measure`) and with `wqmesh check`'s
-// smallest input angle. Skipped when the native build or TetGen is missing.
+// smallest input angle. On wedge.off of ../shared/models, a tie at the
+// input's bound (its smallest internal dihedral angle) is met. Skipped when
+// the native build or TetGen is missing.
 // Run: node --test tests/node/benchmark.test.mjs
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
@@ -94,4 +96,38 @@ test('the benchmark prints a verdict per goal that agrees with its figures', { s
   assert.equal(Number(all[3]), sum('<5'));
   assert.equal(Number(all[4]), sum('tets'));
   assert.equal(all[5], Number(all[2]) <= 1.0 ? 'met' : 'not met');
+});
+
+// wedge.off (../shared/models): wqmesh's smallest dihedral angle is 1e-15 below TetGen's, both the input's
+// smallest internal dihedral angle theta (`wqmesh check`) to rounding, the bound of every conforming mesh; the
+// goal is then met as a tie, whose cell gives both measures in full and theta. Skipped without wedge.off.
+const wedge = join(root, '../shared/models/wedge.off');
+test('a tie at the input\'s bound is met, with the figures in full', {
+  skip: skip || (!existsSync(wedge) && '../shared/models is absent'), timeout: 120000,
+}, () => {
+  const r = spawnSync(process.execPath, [join(root, 'examples/node/benchmark.mjs'), '--build',
+    dirname(dirname(cli)), '--tools', 'wqmesh,tetgen', '--no-growth', wedge], { encoding: 'utf8',
+    maxBuffer: 64 << 20 });
+  assert.equal(r.status, 0, r.stderr);
+  const g = tableAfter(r.stdout, 'Goals of issue 14').find((x) => x.model === 'wedge.off');
+  assert.ok(g, 'no goals row for wedge.off');
+  const check = spawnSync(cli, ['check', wedge, '--compact'], { encoding: 'utf8' });
+  assert.equal(check.status, 0, check.stderr);
+  const theta = Math.min(...JSON.parse(check.stdout).analysis.dihedral.map((d) => d.internal));
+  const m = /^(met|not met) \((\S+) (>=|<|=) (\S+)(?: to 1e-12 at the bound: (\S+) and (\S+), the sharpest input edge's (\S+)\))?/
+    .exec(g['min dih']);
+  assert.ok(m, `"${g['min dih']}"`);
+  // Met either way: wqmesh at the bound (SharpEdge.* of the native tests), as a tie or, had its rounding gone the
+  // other way, as at least TetGen's.
+  assert.equal(m[1], 'met', g['min dih']);
+  if (m[3] !== '=') {
+    assert.equal(m[3], '>=', g['min dih']);
+    return;
+  }
+  const [w, t, bound] = [Number(m[5]), Number(m[6]), Number(m[7])];
+  assert.equal(m[1], 'met');
+  assert.equal(bound, theta);
+  assert.ok(w < t, `${w} < ${t}`);
+  assert.ok(Math.abs(w / theta - 1) <= 1e-12 && Math.abs(t / theta - 1) <= 1e-12, g['min dih']);
+  assert.equal(m[2], m[4]);
 });
