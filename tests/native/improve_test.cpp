@@ -594,6 +594,32 @@ std::vector<std::string> models() {
   return out;
 }
 
+/// A model meshed without the improvement phase (`plain`) and with it (`r`).
+struct Meshed {
+  invariants::Input in;
+  MeshResult plain, r;
+};
+
+/// Meshes f both ways into m and checks what holds of every such pair: the
+/// phase ran last, in r only; r meets every invariant and its worst min-sine
+/// is at least plain's; r's vertices are plain's with the Steiner points
+/// appended and the contracted vertices dropped (fatal when the counts are
+/// off: the callers index both vertex lists).
+void mesh_both(const std::string& f, Meshed& m) {
+  m.in = invariants::load(f);
+  MeshOptions off;
+  off.improve = false;
+  m.plain = mesh_polyhedron(m.in.plc, m.in.analysis, off);
+  m.r = mesh_polyhedron(m.in.plc, m.in.analysis);
+  EXPECT_FALSE(m.plain.improve.ran);
+  EXPECT_TRUE(m.r.improve.ran);
+  invariants::expect_invariants(f, m.in, m.r);
+  EXPECT_GE(worst(m.r.mesh), worst(m.plain.mesh));
+  ASSERT_FALSE(m.r.phases.empty());
+  EXPECT_EQ(m.r.phases.back().name, "improve");
+  ASSERT_EQ(m.r.mesh.vertices.size() + m.r.improve.contractions, m.plain.mesh.vertices.size() + m.r.improve.inserted);
+}
+
 // A regular pentagon p0..p4 in z = 0 (radius 1) fanned from p0 into three
 // faces, each sandwiched between the apexes a = (0, 0, h) and b = (0, 0, -h):
 // six flat tets. Around the new edge ab (through the middle face) the five
@@ -668,21 +694,14 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
   std::size_t multi_face = 0;
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const invariants::Input in = invariants::load(f);
-    MeshOptions off;
-    off.improve = false;
-    const MeshResult plain = mesh_polyhedron(in.plc, in.analysis, off);
-    const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
-    EXPECT_FALSE(plain.improve.ran);
-    EXPECT_TRUE(r.improve.ran);
-    invariants::expect_invariants(f, in, r);
-    EXPECT_GE(worst(r.mesh), worst(plain.mesh));
-    EXPECT_EQ(r.phases.back().name, "improve");
     // The phase starts from the mesh improve = false returns: the same
     // vertices first (Steiner points are appended), moved only if free.
     // Contractions drop vertices (the others keep their order, input
     // vertices first) and boundary triangles.
-    ASSERT_EQ(r.mesh.vertices.size() + r.improve.contractions, plain.mesh.vertices.size() + r.improve.inserted);
+    Meshed m;
+    ASSERT_NO_FATAL_FAILURE(mesh_both(f, m));
+    const invariants::Input& in = m.in;
+    const MeshResult &plain = m.plain, &r = m.r;
     // Input vertices never move; a boundary vertex only slides, staying on
     // each of its facets' planes exactly as before, and a point inserted on
     // a facet lies on its plane exactly as a vertex of the facet did: n . (p
@@ -716,12 +735,16 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
     std::map<int, std::set<CGAL::MP_Float>> was;
     for (const auto& [v, fs] : before)
       for (int g : fs) was[g].insert(residual_of(g, plain.mesh.vertices[v]));
-    std::size_t moved = 0, added = 0;
+    // The boundary vertices at a point where no vertex was before the phase
+    // (slid or inserted on a facet), by position: contractions renumber.
+    const std::set<Point3> had(plain.mesh.vertices.begin(), plain.mesh.vertices.end());
+    std::size_t at_new_points = 0, added = 0;
+    for (const auto& vf : after) at_new_points += !had.count(r.mesh.vertices[vf.first]);
     if (r.improve.contractions == 0) {
       for (const auto& [v, fs] : after) {
         const bool old = v < int(plain.mesh.vertices.size());
         if (old && r.mesh.vertices[v] == plain.mesh.vertices[v]) continue;
-        ++(old ? moved : added);
+        if (!old) ++added;
         if (old) EXPECT_EQ(before.at(v), fs) << "boundary vertex " << v << " changed facets";
         for (int g : fs) {
           const CGAL::MP_Float now = residual_of(g, r.mesh.vertices[v]);
@@ -753,12 +776,12 @@ TEST(Improve, ModelsKeepEveryInvariantAndNeverGetWorse) {
     inserted_on_boundary += r.improve.inserted_on_boundary;
     std::printf(
         "[ improve  ] %s: min dihedral %.3g -> %.3g deg, tets %zu -> %zu; 2-3 %zu, 3-2 %zu, 4-4 %zu, "
-        "2-2 %zu, edge removals %zu, multi-face removals %zu, smoothed %zu (boundary vertices moved %zu), inserted %zu "
-        "(on facets %zu), contractions %zu, passes %d\n",
+        "2-2 %zu, edge removals %zu, multi-face removals %zu, smoothed %zu, inserted %zu (on facets %zu), "
+        "boundary vertices at new points %zu (slid or inserted), contractions %zu, passes %d\n",
         fs::path(f).filename().c_str(), r.improve.min_dihedral_before, r.improve.min_dihedral_after,
         plain.mesh.tets.size(), r.mesh.tets.size(), r.improve.flips23, r.improve.flips32, r.improve.flips44,
-        r.improve.flips22, r.improve.edge_removals, r.improve.multi_face_removals, r.improve.smoothed, moved,
-        r.improve.inserted, r.improve.inserted_on_boundary, r.improve.contractions, r.improve.passes);
+        r.improve.flips22, r.improve.edge_removals, r.improve.multi_face_removals, r.improve.smoothed,
+        r.improve.inserted, r.improve.inserted_on_boundary, at_new_points, r.improve.contractions, r.improve.passes);
     multi_face += r.improve.multi_face_removals;
   }
   // thin_wedge.off (an example model, always there) gets points on facets.
@@ -1004,15 +1027,10 @@ TEST(Improve, ContractionsNearASmallAngleKeepEveryInvariant) {
   if (files.empty()) GTEST_SKIP() << "shared models absent";
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const invariants::Input in = invariants::load(f);
-    MeshOptions off;
-    off.improve = false;
-    const MeshResult plain = mesh_polyhedron(in.plc, in.analysis, off);
-    const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
+    Meshed m;
+    ASSERT_NO_FATAL_FAILURE(mesh_both(f, m));
+    const MeshResult &plain = m.plain, &r = m.r;
     EXPECT_GT(r.improve.contractions, 0u);
-    EXPECT_EQ(r.mesh.vertices.size() + r.improve.contractions, plain.mesh.vertices.size() + r.improve.inserted);
-    invariants::expect_invariants(f, in, r);
-    EXPECT_GE(worst(r.mesh), worst(plain.mesh));
     EXPECT_LE(under_5_degrees(r.mesh), under_5_degrees(plain.mesh));
     std::printf("[ improve  ] %s: tets %zu -> %zu, under 5 degrees %zu -> %zu, contractions %zu\n",
                 fs::path(f).filename().c_str(), plain.mesh.tets.size(), r.mesh.tets.size(), under_5_degrees(plain.mesh),

@@ -108,26 +108,30 @@ TEST(MesherLarge, StepStopsAtOnceNamingItsNeedleEdges) {
   EXPECT_TRUE(r.mesh.tets.empty());
 }
 
-TEST(Mesher, BoxHasNoProtectingBallAndNoViolation) {
-  const Input in = from_off(
-      "OFF\n8 6 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n0 0 1\n2 0 1\n2 1 1\n0 1 1\n"
-      "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+// Meshes the OFF text `off`, a polyhedron with no angle under 90 degrees
+// (no sharp element, so no protecting ball and nothing near a small angle),
+// and checks every invariant and that no tet is a violation.
+void expect_no_ball_and_no_violation(const char* name, const char* off) {
+  const Input in = from_off(off);
   const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
-  expect_invariants("box", in, r);
+  expect_invariants(name, in, r);
   EXPECT_TRUE(r.protecting_balls.empty());
   EXPECT_EQ(r.violations, 0u);
   EXPECT_EQ(r.near_small_angle, 0u);
   EXPECT_EQ(r.sharp_elements, 0u);
 }
 
+TEST(Mesher, BoxHasNoProtectingBallAndNoViolation) {
+  expect_no_ball_and_no_violation("box",
+                                  "OFF\n8 6 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n0 0 1\n2 0 1\n2 1 1\n0 1 1\n"
+                                  "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n");
+}
+
 TEST(Mesher, LShapedBlockHasNoViolation) {
-  const Input in = from_off(
+  expect_no_ball_and_no_violation(
+      "L-block",
       "OFF\n12 8 0\n0 0 0\n2 0 0\n2 1 0\n1 1 0\n1 2 0\n0 2 0\n0 0 1\n2 0 1\n2 1 1\n1 1 1\n1 2 1\n0 2 1\n"
       "6 0 5 4 3 2 1\n6 6 7 8 9 10 11\n4 0 1 7 6\n4 1 2 8 7\n4 2 3 9 8\n4 3 4 10 9\n4 4 5 11 10\n4 5 0 6 11\n");
-  const MeshResult r = mesh_polyhedron(in.plc, in.analysis);
-  expect_invariants("L-block", in, r);
-  EXPECT_TRUE(r.protecting_balls.empty());
-  EXPECT_EQ(r.violations, 0u);
 }
 
 TEST(Mesher, ProvenRhoLeavesNoSkinnyViolation) {
@@ -321,15 +325,19 @@ const char* kWedge =
     "OFF\n6 5 0\n0 0 0\n1 0 0\n1 0.2 0\n0 0 1\n1 0 1\n1 0.2 1\n"
     "3 0 2 1\n3 3 4 5\n4 0 1 4 3\n4 1 2 5 4\n4 2 0 3 5\n";
 
-// The mesher's state on an input after INITIALIZE (and CONFORM when asked);
-// the members outlive the Mesher, which refers to them.
+// The mesher's state on an input; the members outlive the Mesher, which
+// refers to them.
 struct Stage {
   Input in;
   mesher::Domain dom;
   MeshOptions options;
   ProgressCallback none;
   mesher::Mesher m;
-  Stage(const Input& input, bool conformed) : in(input), dom(in.plc, in.analysis), m(dom, options, none) {
+  /// Before INITIALIZE, with the options o.
+  Stage(const Input& input, const MeshOptions& o)
+      : in(input), dom(in.plc, in.analysis), options(o), m(dom, options, none) {}
+  /// After INITIALIZE (and CONFORM when asked), with the default options.
+  Stage(const Input& input, bool conformed) : Stage(input, MeshOptions{}) {
     m.initialize();
     if (conformed) m.conform();
   }
@@ -522,12 +530,10 @@ TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
   for (const std::string& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
   if (files.empty()) GTEST_SKIP() << "no model";
   for (const std::string& file : files) {
-    const Input in = load(file);
-    const mesher::Domain dom(in.plc, in.analysis);
     MeshOptions o;
     o.pump = false;  // REFINE without rule 7: plenty of slivers to pump
-    ProgressCallback none;
-    mesher::Mesher m(dom, o, none);
+    Stage st(load(file), o);
+    mesher::Mesher& m = st.m;
     m.initialize();
     m.conform();
     m.refine();
@@ -573,13 +579,11 @@ TEST(MesherRules, Rule6LeavesTetsOnAVertexBallSphereAlone) {
   // and the tet stayed, its real circumsphere being empty).
   const auto files = models(WQMESH_EXAMPLE_MODELS, {"thin_wedge.off"});
   if (files.empty()) GTEST_SKIP() << "no example models";
-  const Input in = load(files[0]);
-  const mesher::Domain dom(in.plc, in.analysis);
   MeshOptions o;
   o.pump = false;
   o.max_size = 0.2;
-  ProgressCallback none;
-  mesher::Mesher m(dom, o, none);
+  Stage st(load(files[0]), o);
+  mesher::Mesher& m = st.m;
   std::set<std::array<double, 3>> rule6;
   m.inserter().observer = [&](const mesher::Insertion& ins, int rule, int id) {
     if (id >= 0 && rule == 6 && ins.on == mesher::On::free) rule6.insert(ins.p);
@@ -650,11 +654,10 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
   for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
   for (const std::string& file : files) {
     SCOPED_TRACE(file);
-    const Input in = load(file);
-    const mesher::Domain dom(in.plc, in.analysis);
-    MeshOptions o;
-    ProgressCallback none;
-    mesher::Mesher m(dom, o, none);
+    Stage st(load(file), MeshOptions{});
+    const Input& in = st.in;
+    const mesher::Domain& dom = st.dom;
+    mesher::Mesher& m = st.m;
     std::array<int, 8> seen{};
     std::size_t circumcenters = 0, subfacet_centers = 0;
     m.inserter().observer = [&](const mesher::Insertion& ins, int rule, int id) {
@@ -734,12 +737,11 @@ TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
   int order_free_models = 0;
   for (const std::string& file : files) {
     SCOPED_TRACE(file);
-    const Input in = load(file);
-    const mesher::Domain dom(in.plc, in.analysis);
     MeshOptions o;
     o.pump = false;  // no rule 7: slivers left to count
-    ProgressCallback none;
-    mesher::Mesher m(dom, o, none);
+    Stage st(load(file), o);
+    const mesher::Domain& dom = st.dom;
+    mesher::Mesher& m = st.m;
     m.initialize();
     m.conform();
     m.refine();
@@ -793,11 +795,8 @@ TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
   for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
   for (const std::string& file : files) {
     SCOPED_TRACE(file);
-    const Input in = load(file);
-    const mesher::Domain dom(in.plc, in.analysis);
-    MeshOptions o;
-    ProgressCallback none;
-    mesher::Mesher m(dom, o, none);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
     std::size_t kept = 0, insertions = 0;
     auto check = [&] {
       for (const auto& [k, s] : m.subcomplex().subsegments()) {

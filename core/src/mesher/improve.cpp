@@ -721,6 +721,36 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
   return current;
 }
 
+Improver::MeshWorst Improver::mesh_worst() const {
+  MeshWorst w{HUGE_VAL, 180};
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) {
+      const Tet& T = tets_[t];
+      w.sine = std::min(w.sine, q_[t]);
+      w.dihedral_deg = std::min(w.dihedral_deg, tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    }
+  return w;
+}
+
+void Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes) {
+  const Point3 p = P_[p_id];
+  double lmin = HUGE_VAL, current = HUGE_VAL;
+  for (const Tet& T : fresh) {
+    current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    for (int k = 0; k < 3; ++k) lmin = std::min(lmin, geometry::dist2(P_[T[k]], p));
+  }
+  lmin = std::sqrt(lmin);
+  if (lmin > 0)
+    ascend(
+        p_id, fresh, current, lmin,
+        [&] {
+          for (const Tet& T : fresh)
+            if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
+          return true;
+        },
+        axes);
+}
+
 bool Improver::smooth(int v) {
   const int axes = movable_axes(v);
   if (axes == 0) return false;
@@ -849,18 +879,7 @@ bool Improver::insert(int t) {
       // Beyond Stellar's rule as written: the new point is first placed by
       // the smoothing ascent on its own star (the cavity stays), then the
       // insertion is judged.
-      double lmin = HUGE_VAL, current = HUGE_VAL;
-      for (const Tet& T : fresh) {
-        current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
-        for (int k = 0; k < 3; ++k) lmin = std::min(lmin, geometry::dist2(P_[T[k]], p));
-      }
-      lmin = std::sqrt(lmin);
-      if (lmin > 0)
-        ascend(p_id, fresh, current, lmin, [&] {
-          for (const Tet& T : fresh)
-            if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
-          return true;
-        });
+      ascend_new_point(p_id, fresh);
       vtet_.push_back(-1);
       double w;
       if (accept(cav, fresh, w) && w > best) {
@@ -896,14 +915,8 @@ std::size_t Improver::fix_violations() {
     if (alive(int(t)) && shape_[t] != TetClassifier::Shape::good && tet_class(int(t)) == TetClass::violation)
       list.push_back(int(t));
   if (list.empty()) return 0;
-  double worst_sine = HUGE_VAL, smallest_deg = 180;
-  for (std::size_t t = 0; t < tets_.size(); ++t)
-    if (alive(int(t))) {
-      const Tet& T = tets_[t];
-      worst_sine = std::min(worst_sine, q_[t]);
-      smallest_deg = std::min(smallest_deg, tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
-    }
-  fix_floor_ = std::max(worst_sine, std::sin(smallest_deg * geometry::kPi / 180));
+  const MeshWorst worst = mesh_worst();
+  fix_floor_ = std::max(worst.sine, std::sin(worst.dihedral_deg * geometry::kPi / 180));
   std::size_t n = 0;
   fixing_ = true;
   for (int t : list) {

@@ -214,6 +214,20 @@ class Improver {
   /// Only the coordinates of `axes` (bit i: axis i) change.
   double ascend(int v, const std::vector<Tet>& tets, double current, double lmin, const std::function<bool()>& valid,
                 int axes = 7);
+  /// The worst min-sine and the smallest dihedral angle (degrees) of the
+  /// live tets (HUGE_VAL and 180 without any): the floors of the relaxed
+  /// rules (fix_floor_, set_contract_floors).
+  struct MeshWorst {
+    double sine, dihedral_deg;
+  };
+  MeshWorst mesh_worst() const;
+  /// Places the new vertex p_id (at P_[p_id]; vertex 3 of every tet of its
+  /// star `fresh`) by ascend() on the worst min-sine of fresh from lmin / 5,
+  /// lmin its shortest edge, keeping every tet of fresh positive (EPICK's
+  /// exact orientation); only the coordinates of `axes` change (bit i: axis
+  /// i). Beyond the paper: the insertions (insert(), insert_boundary())
+  /// place their point so before they are judged.
+  void ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes = 7);
 
   MeshResult& r_;
   double rho_, max_size_;

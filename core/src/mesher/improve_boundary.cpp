@@ -165,21 +165,7 @@ bool Improver::insert_boundary(int t) {
         // The new point is first slid along the facet's axes by the smoothing
         // ascent on its own star (the cavity stays), then the insertion is judged.
         P_.push_back(p);
-        double lmin = HUGE_VAL, current = HUGE_VAL;
-        for (const Tet& T : fresh) {
-          current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
-          for (int j = 0; j < 3; ++j) lmin = std::min(lmin, geometry::dist2(P_[T[j]], p));
-        }
-        lmin = std::sqrt(lmin);
-        if (lmin > 0)
-          ascend(
-              p_id, fresh, current, lmin,
-              [&] {
-                for (const Tet& T : fresh)
-                  if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
-                return true;
-              },
-              axes);
+        ascend_new_point(p_id, fresh, axes);
         vtet_.push_back(-1);
         double w;
         if (accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {

@@ -147,14 +147,9 @@ bool Improver::removal(int v, std::vector<int>& S, std::vector<int>& bt, std::ve
 }
 
 void Improver::set_contract_floors() {
-  contract_floor_ = HUGE_VAL;
-  contract_dihedral_ = 180;
-  for (std::size_t t = 0; t < tets_.size(); ++t)
-    if (alive(int(t))) {
-      const Tet& T = tets_[t];
-      contract_floor_ = std::min(contract_floor_, q_[t]);
-      contract_dihedral_ = std::min(contract_dihedral_, tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
-    }
+  const MeshWorst w = mesh_worst();
+  contract_floor_ = w.sine;
+  contract_dihedral_ = w.dihedral_deg;
 }
 
 void Improver::contract_targets(int v, std::vector<int>& out) const {
