@@ -29,9 +29,25 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Hidden points are discarded: the weights of WQMESH (at most N(v)^2/9) never
 // hide a vertex, and a hidden insertion is reported to the caller.
 using Vb3 = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
-using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points>;
+// The hidden-point container of the cells: with Discard_hidden_points CGAL
+// never stores into it and only asks for its (empty) range, but the default
+// one, a std::list, is still a member of every cell (24 bytes: 96 instead
+// of 72 a cell). Beyond CGAL's defaults (issue 15, the peak memory: the
+// cells are most of the triangulation, 2.2 per output tet): an empty range
+// with no storage, so a cell is its vertices, neighbours and TDS mark.
+struct NoHiddenPoints {
+  using iterator = K::Weighted_point_3*;
+  using const_iterator = const K::Weighted_point_3*;
+  iterator end() { return nullptr; }
+  const_iterator end() const { return nullptr; }
+};
+using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points,
+                                                    NoHiddenPoints>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
+// 4 vertices, 4 neighbours, the TDS mark (72 bytes natively); the bound
+// leaves a pointer's room for a compiler's padding, not the list's three.
+static_assert(sizeof(Rt::Cell) <= 10 * sizeof(void*), "a cell: 4 vertices, 4 neighbours and the TDS mark, no more");
 using WPoint = K::Weighted_point_3;
 using BPoint = K::Point_3;
 

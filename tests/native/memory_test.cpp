@@ -2,8 +2,9 @@
 // triangulation, the subcomplex, the queues) are freed once the mesh is
 // extracted, before the per-tet measures, the classes and the improvement
 // phase are built; the extraction split in two (the mesh, then
-// classify_tets) gives the same result as the whole extraction; PUMP's
-// compact label table answers as a map does.
+// classify_tets) gives the same result as the whole extraction, and so does
+// a run whose subcomplex was frozen after REFINE; PUMP's compact label table
+// answers as a map does.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 #include <malloc.h>
@@ -104,6 +105,61 @@ TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
     EXPECT_EQ(r.near_small_angle, expected.near_small_angle);
     EXPECT_EQ(r.violations, expected.violations);
     EXPECT_EQ(r.orthoradius_skinny, expected.orthoradius_skinny);
+  }
+}
+
+// Subcomplex::freeze (Mesher::freeze_subcomplex, as mesh_polyhedron calls it
+// after REFINE): the subfacets come from the kept list exactly as from the
+// facets' planar triangulations, the run conforms as before, PUMP and the
+// extraction give the same result field by field, and what needs the freed
+// planar triangulations is refused.
+TEST(Memory, FrozenSubcomplexGivesTheSameRunAfterRefine) {
+  for (const std::string name : {"spike.off", "slit.off", "edge_facet.off"}) {
+    SCOPED_TRACE(name);
+    const Input in = load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
+    const mesher::Domain dom(in.plc, in.analysis);
+    MeshOptions o;
+    ProgressCallback none;
+    auto refine = [&](mesher::Mesher& m) {
+      m.initialize();
+      m.conform();
+      m.refine();
+    };
+    mesher::Mesher live(dom, o, none), frozen(dom, o, none);
+    refine(live);
+    refine(frozen);
+    const std::vector<mesher::Subfacet> expected = live.subcomplex().subfacets();
+    ASSERT_FALSE(expected.empty());
+    frozen.freeze_subcomplex();
+    ASSERT_TRUE(frozen.subcomplex().frozen());
+    EXPECT_FALSE(live.subcomplex().frozen());
+    const std::vector<mesher::Subfacet> kept = frozen.subcomplex().subfacets();
+    ASSERT_EQ(kept.size(), expected.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      EXPECT_EQ(kept[i].facet, expected[i].facet) << "subfacet " << i;
+      EXPECT_EQ(kept[i].v, expected[i].v) << "subfacet " << i;
+    }
+    EXPECT_EQ(frozen.subcomplex().conforms(), live.subcomplex().conforms());
+    EXPECT_THROW(frozen.subcomplex().facet_triangulation(0), std::logic_error);
+    std::vector<mesher::Tri> around;
+    EXPECT_THROW(frozen.subcomplex().subfacets_at(0, 0, around), std::logic_error);
+    EXPECT_THROW(frozen.subcomplex().is_subfacet(kept[0].facet, kept[0].v), std::logic_error);
+    for (mesher::Mesher* m : {&live, &frozen}) {
+      m->count_qmesh_slivers();
+      m->pump();
+    }
+    EXPECT_EQ(frozen.pumped_vertices(), live.pumped_vertices());
+    const MeshResult a = live.extract(), b = frozen.extract();
+    EXPECT_EQ(b.mesh.vertices, a.mesh.vertices);
+    EXPECT_EQ(b.mesh.weights, a.mesh.weights);
+    EXPECT_EQ(b.mesh.tets, a.mesh.tets);
+    EXPECT_EQ(b.mesh.boundary, a.mesh.boundary);
+    EXPECT_EQ(b.mesh.boundary_facet, a.mesh.boundary_facet);
+    EXPECT_EQ(b.nearest_neighbour, a.nearest_neighbour);
+    EXPECT_EQ(b.tet_class, a.tet_class);
+    EXPECT_EQ(b.conforming, a.conforming);
+    EXPECT_EQ(b.slivers, a.slivers);
+    EXPECT_EQ(b.violations, a.violations);
   }
 }
 

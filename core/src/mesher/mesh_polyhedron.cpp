@@ -120,6 +120,9 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
   run("initialize", [&] { m.initialize(); });
   run("conform", [&] { m.conform(); });
   run("refine", [&] { m.refine(); });
+  // V is final: PUMP and the extraction need only the list of subfacets,
+  // not the facets' planar triangulations (issue 15, the peak memory).
+  m.freeze_subcomplex();
   std::size_t slivers_qmesh = 0;
   if (options.pump && !m.meter().stopped()) {
     // Count the inside slivers QMESH would leave (a scan that polls: a

@@ -7,6 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#if defined(__GLIBC__) && !defined(__EMSCRIPTEN__)
+#include <malloc.h>
+#endif
 
 #include "mesher/extract.h"
 #include "mesher/phases.h"
@@ -71,6 +74,17 @@ MeshResult Mesher::extract_mesh() {
   return Extract(dom_, opt_, live().tri, verts_, live().sub, balls_, nn_, meter_).mesh();
 }
 
+void trim_heap() {
+#if defined(__GLIBC__) && !defined(__EMSCRIPTEN__)
+  malloc_trim(0);
+#endif
+}
+
+void Mesher::freeze_subcomplex() {
+  live().sub.freeze();
+  trim_heap();
+}
+
 void Mesher::release() {
   pieces_.reset();
   verts_ = {};
@@ -79,6 +93,7 @@ void Mesher::release() {
   sliver_scan_labels_ = {};
   sliver_scan_vertices_ = -1;
   released_ = true;
+  trim_heap();
 }
 
 std::size_t Mesher::count_qmesh_slivers() {

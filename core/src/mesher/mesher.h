@@ -85,6 +85,13 @@ class Inserter {
   std::array<std::size_t, kRules> rule_count_{};
 };
 
+/// Beyond the paper (issue 15, the peak memory): hands the free pages of the
+/// C heap back to the system (glibc's malloc_trim), so that the process's
+/// resident memory follows the live heap down when a phase's pieces are freed
+/// (glibc keeps the pages of the many small blocks REFINE frees). Nothing
+/// under Emscripten, whose heap never shrinks.
+void trim_heap();
+
 /// The pieces of one run, and the phases in order (section 4.3). Tests run
 /// the phases one by one and look at the pieces in between.
 class Mesher {
@@ -104,12 +111,18 @@ class Mesher {
   /// and classes (classify_tets adds them), nothing in it referring to the
   /// pieces, so that release() may follow.
   MeshResult extract_mesh();
+  /// V is final (REFINE is done): the subcomplex keeps its subfacets as a
+  /// list and frees the facets' planar triangulations (Subcomplex::freeze;
+  /// issue 15, the peak memory), and the freed memory goes back to the
+  /// system (trim_heap). pump() and the extraction may follow; a phase that
+  /// inserts points (initialize, conform, refine) may not.
+  void freeze_subcomplex();
   /// Frees the large pieces once the mesh is extracted (issue 15, the peak
   /// memory): V's triangulation, the subcomplex (subsegments, the facets'
   /// planar triangulations), the queues, N(v), the count's scan, and V's
   /// MVertex list; the protecting balls, the meter and the inserter's counts
-  /// stay. No phase and no extraction may run after it. Tests check
-  /// released().
+  /// stay, and the freed memory goes back to the system (trim_heap). No
+  /// phase and no extraction may run after it. Tests check released().
   void release();
   /// Whether release() ran: V's triangulation then holds no vertex.
   bool released() const { return released_; }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "mesher/subcomplex.h"
 
@@ -77,8 +78,21 @@ bool Subcomplex::lies_in_facet(int f, const Tri& t) const {
   return dom_.inside_facet(f, c);
 }
 
+const PlanarDelaunay& Subcomplex::live_facet_dt(int f) const {
+  if (frozen_) throw std::logic_error("internal error: a facet's planar triangulation was used after freeze()");
+  return facet_dt_[f];
+}
+
+void Subcomplex::freeze() {
+  if (frozen_) return;
+  frozen_subfacets_ = subfacets();
+  frozen_subfacets_.shrink_to_fit();
+  std::vector<PlanarDelaunay>().swap(facet_dt_);
+  frozen_ = true;
+}
+
 void Subcomplex::subfacets_at(int f, int v, std::vector<Tri>& out) const {
-  facet_dt_[f].incident_triangles(v, out);
+  live_facet_dt(f).incident_triangles(v, out);
   out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }), out.end());
 }
 
@@ -86,13 +100,14 @@ bool Subcomplex::is_subfacet(int f, const Tri& t) const {
   // A triangle of f's planar triangulation (found among the two on its edge
   // t[0] t[1]), then in f: the costlier test runs on that one triangle only.
   std::vector<Tri> around;
-  facet_dt_[f].edge_triangles(t[0], t[1], around);
+  live_facet_dt(f).edge_triangles(t[0], t[1], around);
   for (const Tri& u : around)
     if (u[0] == t[2] || u[1] == t[2] || u[2] == t[2]) return lies_in_facet(f, u);
   return false;
 }
 
 std::vector<Subfacet> Subcomplex::subfacets() const {
+  if (frozen_) return frozen_subfacets_;
   std::vector<Subfacet> out;
   for (int f = 0; f < static_cast<int>(facet_dt_.size()); ++f)
     for (const Tri& t : facet_dt_[f].triangles())
@@ -118,6 +133,7 @@ bool Subcomplex::flat_on_facet(const Tet& t) const {
 }
 
 void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::uint64_t>& new_segments) {
+  if (frozen_) throw std::logic_error("internal error: a vertex was inserted after the subcomplex's freeze()");
   new_segments.clear();
   vertex_segs_.emplace_back();
   if (ins.has_segment) {

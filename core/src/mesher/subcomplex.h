@@ -139,6 +139,16 @@ class Subcomplex {
   /// triangulations of its facets. `new_segments` gets the keys of the two
   /// halves (to be queued), in order.
   void insert_vertex(int id, const Insertion& ins, std::vector<std::uint64_t>& new_segments);
+  /// V is final (REFINE is done; PUMP changes weights only, and the planar
+  /// triangulations depend on the points alone): keeps the subfacets as a
+  /// list and frees the facets' planar triangulations (issue 15, the peak
+  /// memory: about 56 bytes per output tet beside V's triangulation through
+  /// PUMP and the extraction). Afterwards subfacets() and conforms() answer
+  /// as before; insert_vertex, facet_triangulation, subfacets_at and
+  /// is_subfacet (so SPLITF, ENCROACH and the encroachment tests of
+  /// subfacets) throw std::logic_error. Tests check frozen().
+  void freeze();
+  bool frozen() const { return frozen_; }
 
   // ---- what it holds ----
   const std::unordered_map<std::uint64_t, Subsegment>& subsegments() const { return segs_; }
@@ -147,7 +157,7 @@ class Subcomplex {
   const std::vector<std::uint64_t>& subsegments_at(int v) const { return vertex_segs_[v]; }
   const Sector& sector(int sid) const { return sectors_[sid]; }
   /// Facet f's planar Delaunay triangulation of V ∩ f.
-  const PlanarDelaunay& facet_triangulation(int f) const { return facet_dt_[f]; }
+  const PlanarDelaunay& facet_triangulation(int f) const { return live_facet_dt(f); }
   std::vector<Subfacet> subfacets() const;
   /// The facets of P holding vertex v.
   void facets_of(int v, std::vector<int>& out) const;
@@ -187,6 +197,8 @@ class Subcomplex {
 
  private:
   std::vector<std::uint64_t> shield_keys(int sector) const;
+  /// facet_dt_[f]; throws std::logic_error after freeze().
+  const PlanarDelaunay& live_facet_dt(int f) const;
   bool on_one_edge(int v, int e) const;  ///< v lies on edge e of P (or is an endpoint)
 
   const Domain& dom_;
@@ -197,6 +209,8 @@ class Subcomplex {
   std::vector<std::vector<std::uint64_t>> vertex_segs_;
   std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
   std::vector<PlanarDelaunay> facet_dt_;
+  bool frozen_ = false;
+  std::vector<Subfacet> frozen_subfacets_;  ///< subfacets() at freeze()
   std::vector<Sector> sectors_;
   std::vector<std::vector<int>> vertex_sectors_;  ///< per P vertex
 };
