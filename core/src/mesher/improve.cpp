@@ -191,13 +191,18 @@ void Improver::star(int v, std::vector<int>& out) const {
   out.clear();
   const int s = v < int(vtet_.size()) ? vtet_[v] : -1;
   if (s < 0 || !alive(s) || !has(s, v)) return;
+  star_marks_.reset(tets_.size());
+  star_marks_.put(s);
   out.push_back(s);
   for (std::size_t i = 0; i < out.size(); ++i) {
     const int t = out[i];
     for (int k = 0; k < 4; ++k) {
       if (tets_[t][k] == v) continue;  // the face opposite v does not hold v
       const int n = nb_[t][k];
-      if (n >= 0 && std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+      if (n >= 0 && !star_marks_.has(n)) {
+        star_marks_.put(n);
+        out.push_back(n);
+      }
     }
   }
 }
@@ -249,9 +254,11 @@ TetClass Improver::tet_class(int t) const {
 double Improver::shortest_at(int v, const std::vector<int>& skip) const {
   std::vector<int> S;
   star(v, S);
+  set_marks_.reset(tets_.size());
+  for (int t : skip) set_marks_.put(t);
   double l2 = HUGE_VAL;
   for (int t : S)
-    if (std::find(skip.begin(), skip.end(), t) == skip.end())
+    if (!set_marks_.has(t))
       for (int u : tets_[t])
         if (u != v) l2 = std::min(l2, geometry::dist2(P_[u], P_[v]));
   return l2;
@@ -329,7 +336,17 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   for (After& a : after) {
     auto it = std::find_if(before.inside.begin(), before.inside.end(), [&](const auto& e) { return e.first == a.v; });
     const double inside = it == before.inside.end() ? HUGE_VAL : it->second;
-    const double outside = cur(a.v) < inside ? cur(a.v) : shortest_at(a.v, old);
+    double outside = cur(a.v);
+    if (!(outside < inside)) {
+      auto o =
+          std::find_if(before.outside.begin(), before.outside.end(), [&](const auto& e) { return e.first == a.v; });
+      if (o != before.outside.end()) {
+        outside = o->second;
+      } else {
+        outside = shortest_at(a.v, old);
+        before.outside.push_back({a.v, outside});
+      }
+    }
     a.l2 = std::min(a.l2, outside);
     if (a.l2 != cur(a.v)) changed.push_back(a.v);
   }
@@ -349,17 +366,18 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   }
   // The tets outside `old` of a bad shape at a vertex whose L_v changes.
   int allowed = before.violations;
-  std::vector<int> seen, S;
+  std::vector<int> S;
+  set_marks_.reset(tets_.size());
+  for (int t : old) set_marks_.put(t, 1);
   for (int v : changed) {
     int bad_inside = 0;
     for (int t : old) bad_inside += has(t, v) && shape_[t] != TetClassifier::Shape::good;
     if (v >= int(bad_at_.size()) || bad_at_[v] - bad_inside <= 0) continue;
     star(v, S);
     for (int t : S) {
-      if (shape_[t] == TetClassifier::Shape::good || std::find(old.begin(), old.end(), t) != old.end() ||
-          std::find(seen.begin(), seen.end(), t) != seen.end())
-        continue;
-      seen.push_back(t);
+      // old's tets are marked 1, the tets seen 2.
+      if (shape_[t] == TetClassifier::Shape::good || set_marks_.get(t) >= 1) continue;
+      set_marks_.put(t, 2);
       const Tet& T = tets_[t];
       allowed += tet_class(t) == TetClass::violation;
       violations += classifier_->classify(shape_[t], P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
@@ -417,10 +435,12 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     bool used;
   };
   std::vector<Outer> outer;
+  set_marks_.reset(tets_.size());
+  for (int t : old) set_marks_.put(t);
   for (int t : old)
     for (int k = 0; k < 4; ++k) {
       const int n = nb_[t][k];
-      if (n >= 0 && std::find(old.begin(), old.end(), n) != old.end()) continue;
+      if (n >= 0 && set_marks_.has(n)) continue;
       int s = -1;
       if (n >= 0)
         for (int j = 0; j < 4; ++j)
@@ -512,6 +532,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     const Tet& T = fresh[i];
     tets_[id[i]] = T;
     q_[id[i]] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    forget_dihedral(id[i]);
     for (int v : T) vtet_[v] = id[i];
   }
   ++clock_;
@@ -725,11 +746,19 @@ Improver::MeshWorst Improver::mesh_worst() const {
   MeshWorst w{HUGE_VAL, 180};
   for (std::size_t t = 0; t < tets_.size(); ++t)
     if (alive(int(t))) {
-      const Tet& T = tets_[t];
       w.sine = std::min(w.sine, q_[t]);
-      w.dihedral_deg = std::min(w.dihedral_deg, tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+      w.dihedral_deg = std::min(w.dihedral_deg, dihedral(int(t)));
     }
   return w;
+}
+
+double Improver::dihedral(int t) const {
+  if (dih_.size() < tets_.size()) dih_.resize(tets_.size(), std::numeric_limits<double>::quiet_NaN());
+  if (std::isnan(dih_[t])) {
+    const Tet& T = tets_[t];
+    dih_[t] = tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+  }
+  return dih_[t];
 }
 
 void Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes) {
@@ -795,6 +824,7 @@ bool Improver::smooth(int v) {
   for (int t : S) {
     const Tet& T = tets_[t];
     q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    forget_dihedral(t);
   }
   learn(S);
   ++clock_;
@@ -853,18 +883,28 @@ bool Improver::insert(int t) {
     P_.push_back(p);
     std::vector<Tet> fresh;
     bool ok = false;
+    // Each round scans the outer faces in order for the first that p does
+    // not see; a face found positive stays so (its tet and p do not change),
+    // so it is not tested again (known[4 i + k]: face k of cav[i]).
+    std::vector<char> known;
+    cav_marks_.reset(tets_.size());
+    for (int x : cav) cav_marks_.put(x);
     for (int round = 0; round < kMaxCavity; ++round) {
       fresh.clear();
+      known.resize(4 * cav.size(), 0);
       int grow = -2;
-      for (int x : cav)
-        for (int k = 0; k < 4 && grow == -2; ++k) {
-          const int n = nb_[x][k];
-          if (n >= 0 && std::find(cav.begin(), cav.end(), n) != cav.end()) continue;
-          const Tri f = outward_face(tets_[x], k);
+      for (std::size_t i = 0; i < cav.size() && grow == -2; ++i)
+        for (int k = 0; k < 4; ++k) {
+          const int n = nb_[cav[i]][k];
+          if (n >= 0 && cav_marks_.has(n)) continue;
+          const Tri f = outward_face(tets_[cav[i]], k);
           const Tet nt{{f[0], f[2], f[1], p_id}};
-          if (!positive(P_[nt[0]], P_[nt[1]], P_[nt[2]], P_[nt[3]])) {
-            grow = n;
-            break;
+          if (!known[4 * i + k]) {
+            if (!positive(P_[nt[0]], P_[nt[1]], P_[nt[2]], P_[nt[3]])) {
+              grow = n;
+              break;
+            }
+            known[4 * i + k] = 1;
           }
           fresh.push_back(nt);
         }
@@ -874,8 +914,9 @@ bool Improver::insert(int t) {
       }
       if (grow < 0 || int(cav.size()) >= kMaxCavity) break;
       cav.push_back(grow);
+      cav_marks_.put(grow);
     }
-    if (ok && std::find(cav.begin(), cav.end(), t) != cav.end()) {
+    if (ok && cav_marks_.has(t)) {
       // Beyond Stellar's rule as written: the new point is first placed by
       // the smoothing ascent on its own star (the cavity stays), then the
       // insertion is judged.

@@ -24,6 +24,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -174,6 +175,10 @@ class Improver {
   struct ClassesBefore {
     int violations = 0;
     std::vector<std::pair<int, double>> inside;
+    /// classes_change()'s: per vertex, its shortest edge (squared) on tets
+    /// outside `old`, once computed (those tets do not change while the
+    /// same change is judged again, as smooth() does at each step).
+    mutable std::vector<std::pair<int, double>> outside;
   };
   ClassesBefore classes_before(const std::vector<int>& old) const;
   /// How many more violations there are when `old` is replaced by `fresh`
@@ -267,6 +272,37 @@ class Improver {
   bool fresh_since(std::int64_t at, const Tet& T) const;
   ImproveStats st_;
   bool cancelled_ = false;
+
+  // ---- The phase's time (issue 14, h3): sets of tets or vertices with O(1)
+  // membership, emptied in O(1) (a stamp per slot), for star() and the class
+  // guard (they were linear searches, quadratic in a star's size; a vertex
+  // near a small input angle has stars of a hundred tets and more). They
+  // change no result: the same sets in the same order.
+  struct Marks {
+    std::vector<std::uint32_t> at;  ///< at[i] == stamp: i is in the set
+    std::vector<int> value;         ///< what put() stored with i
+    std::uint32_t stamp = 0;
+    /// Empties the set; slots 0 .. n-1 may be used.
+    void reset(std::size_t n) {
+      if (at.size() < n) at.resize(n, 0), value.resize(n, 0);
+      if (++stamp == 0) std::fill(at.begin(), at.end(), 0), stamp = 1;
+    }
+    bool has(int i) const { return at[i] == stamp; }
+    void put(int i, int val = 0) { at[i] = stamp, value[i] = val; }
+    /// The value put with i, or -1 when i is not in the set.
+    int get(int i) const { return at[i] == stamp ? value[i] : -1; }
+  };
+  mutable Marks star_marks_;  ///< star()'s
+  mutable Marks set_marks_;   ///< shortest_at()'s skip, classes_change()'s and replace()'s old
+  mutable Marks cav_marks_;   ///< the cavity of insert(), sphere_cavity() and boundary_cavity()
+  /// The smallest dihedral angle (degrees) of live tet t, kept from its last
+  /// computation until forget_dihedral(t) (wherever q_[t] is set anew), so
+  /// that mesh_worst() does not recompute every tet's angles on each call.
+  double dihedral(int t) const;
+  void forget_dihedral(int t) {
+    if (t < int(dih_.size())) dih_[t] = std::numeric_limits<double>::quiet_NaN();
+  }
+  mutable std::vector<double> dih_;  ///< NaN: not known
 
   // ---- Boundary operations (improve_boundary.cpp; beyond the paper and
   // beyond Stellar, which moves boundary vertices freely). Conformity stays

@@ -223,6 +223,8 @@ bool Improver::more_bad_tets(const std::vector<int>& old, const std::vector<Tet>
 
 void Improver::sphere_cavity(int t, const Point3& p, std::vector<int>& cav) const {
   cav.assign(1, t);
+  cav_marks_.reset(tets_.size());
+  cav_marks_.put(t);
   auto in_sphere = [&](int x) {
     const Tet& T = tets_[x];
     double s2;
@@ -232,35 +234,46 @@ void Improver::sphere_cavity(int t, const Point3& p, std::vector<int>& cav) cons
   for (std::size_t i = 0; i < cav.size() && int(cav.size()) < kMaxCavity; ++i)
     for (int k = 0; k < 4; ++k) {
       const int n = nb_[cav[i]][k];
-      if (n >= 0 && std::find(cav.begin(), cav.end(), n) == cav.end() && in_sphere(n)) cav.push_back(n);
+      if (n >= 0 && !cav_marks_.has(n) && in_sphere(n)) {
+        cav.push_back(n);
+        cav_marks_.put(n);
+      }
     }
 }
 
 bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
                                std::vector<std::pair<int, Tri3>>& fan) const {
   // The tets whose circumsphere holds p, grown from t through inner faces.
-  sphere_cavity(t, p, cav);
+  sphere_cavity(t, p, cav);  // leaves cav_marks_ holding cav
   const int p_id = int(P_.size());
+  // As in insert(): a face found positive is not tested again (known[4 i + k]:
+  // face k of cav[i]).
+  std::vector<char> known;
   for (int round = 0; round < kMaxCavity; ++round) {
     fresh.clear();
+    known.resize(4 * cav.size(), 0);
     std::vector<int> flat;  // the facet's triangles on the cavity's surface
     int grow = -2;
-    for (int x : cav) {
+    for (std::size_t i = 0; i < cav.size(); ++i) {
+      const int x = cav[i];
       for (int k = 0; k < 4 && grow == -2; ++k) {
         const int n = nb_[x][k];
-        if (n >= 0 && std::find(cav.begin(), cav.end(), n) != cav.end()) continue;
+        if (n >= 0 && cav_marks_.has(n)) continue;
         if (n < 0 && r_.mesh.boundary_facet[-1 - n] == f) {
           flat.push_back(-1 - n);
           continue;
         }
         const Tri3 F = outward(tets_[x], k);
         const Tet nt{{F[0], F[2], F[1], p_id}};
-        // p is not in P_ yet: test with it in place.
-        const Point3* q[4];
-        for (int j = 0; j < 4; ++j) q[j] = nt[j] == p_id ? &p : &P_[nt[j]];
-        if (!positive(*q[0], *q[1], *q[2], *q[3])) {
-          grow = n;
-          break;
+        if (!known[4 * i + k]) {
+          // p is not in P_ yet: test with it in place.
+          const Point3* q[4];
+          for (int j = 0; j < 4; ++j) q[j] = nt[j] == p_id ? &p : &P_[nt[j]];
+          if (!positive(*q[0], *q[1], *q[2], *q[3])) {
+            grow = n;
+            break;
+          }
+          known[4 * i + k] = 1;
         }
         fresh.push_back(nt);
       }
@@ -301,6 +314,7 @@ bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector
     }
     if (grow < 0 || int(cav.size()) >= kMaxCavity) return false;
     cav.push_back(grow);
+    cav_marks_.put(grow);
   }
   return false;
 }

@@ -240,11 +240,7 @@ bool Improver::contract(int v, int u) {
   // Whether the star holds the mesh's worst tet (then the floors may rise).
   bool floor_tet = false;
   if (!std::isnan(contract_floor_))
-    for (int t : S) {
-      const Tet& T = tets_[t];
-      floor_tet = floor_tet || q_[t] <= contract_floor_ ||
-                  tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) <= contract_dihedral_;
-    }
+    for (int t : S) floor_tet = floor_tet || q_[t] <= contract_floor_ || dihedral(t) <= contract_dihedral_;
   if (!replace(S, fresh, boundary, v)) return false;
   if (floor_tet) set_contract_floors();
   if (v >= int(removed_.size())) removed_.resize(P_.size(), 0);
