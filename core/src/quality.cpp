@@ -80,7 +80,9 @@ struct ScaledTet {
       const Point3& a = *p[kE[i][0]];
       const Point3& b = *p[kE[i][1]];
       for (int c = 0; c < 3; ++c) {
-        edge[i][c] = std::ldexp(b[c], -pre) - std::ldexp(a[c], -pre);
+        // pre == 0 almost always: ldexp(x, 0) is x (issue 15: the calls
+        // were a few percent of a run).
+        edge[i][c] = pre ? std::ldexp(b[c], -pre) - std::ldexp(a[c], -pre) : b[c] - a[c];
         largest = std::max(largest, std::fabs(edge[i][c]));
       }
     }
@@ -91,8 +93,17 @@ struct ScaledTet {
     }
     zero = false;
     const int m = std::ilogb(largest);
-    for (Point3& e : edge)
-      for (double& x : e) x = std::ldexp(x, -m);
+    // x * 2^-m is the correctly rounded product, as ldexp(x, -m) is, when
+    // 2^-m is a normal double (|m| <= 1022; m <= 1021 here): the same value
+    // without a library call (issue 15).
+    if (m >= -1022) {
+      const double scale = std::ldexp(1.0, -m);
+      for (Point3& e : edge)
+        for (double& x : e) x *= scale;
+    } else {
+      for (Point3& e : edge)
+        for (double& x : e) x = std::ldexp(x, -m);
+    }
     k = m + pre;
   }
 };
@@ -243,6 +254,30 @@ double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, c
   double smallest = 180;
   for (int i = 0; i < 6; ++i) {
     const double angle = dihedral_deg(s, i);
+    if (angle < smallest) smallest = angle;
+  }
+  return smallest;
+}
+
+double tet_min_dihedral_deg_upto(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double bound) {
+  if (!(bound >= 1e-6 && bound < 89)) return tet_min_dihedral_deg(a, b, c, d);
+  // An angle atan2(y, x) (y >= 0) is certainly above `bound` when x <= 0 < y
+  // (90 degrees or more) or y > x tan(bound) (1 + 1e-9): the margin exceeds
+  // the few ulps of atan2, of the conversion to degrees and of tan, so the
+  // angle tet_min_dihedral_deg computes from the same y and x is above bound
+  // too; its atan2 is skipped. The other angles are computed as there.
+  const double slope = std::tan(bound * (kPi / 180.0)) * (1 + 1e-9);
+  const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
+  double smallest = 180;
+  for (int i = 0; i < 6; ++i) {
+    const int pi = kEdge[i][0];
+    const Point3& e = s.edge[i];
+    const Point3 nk = cross(e, edge_vector(s, pi, kOpposite[i][0]));
+    const Point3 nl = cross(e, edge_vector(s, pi, kOpposite[i][1]));
+    const double y = norm(cross(nk, nl));
+    const double x = dot(nk, nl);
+    if (y > 0 && (x <= 0 || y > x * slope)) continue;
+    const double angle = angle_deg(nk, nl);
     if (angle < smallest) smallest = angle;
   }
   return smallest;

@@ -368,6 +368,21 @@ bool RegularTriangulation::is_cell(const Tet& t, CellRef ref) const {
   return a == b;
 }
 
+void RegularTriangulation::prefetch(const Tet& t, CellRef ref, int stage) const {
+  if (ref == nullptr) return;
+  using Cell = Rt::Triangulation_data_structure::Cell;
+  const Cell* c = static_cast<const Cell*>(ref);
+  if (stage == 0) {
+    __builtin_prefetch(c);
+    return;
+  }
+  // The slot may be free or reused: its vertex fields are then other bits,
+  // and a prefetch of any address is harmless (no load, no fault).
+  for (int i = 0; i < 4; ++i) __builtin_prefetch(&*c->vertex(i));
+  for (int v : t)
+    if (v >= 0 && v < static_cast<int>(impl_->points.size())) __builtin_prefetch(&impl_->points[v]);
+}
+
 void RegularTriangulation::adjacent_vertices(int v, std::vector<int>& out) const {
   out.clear();
   std::vector<Rt::Vertex_handle> vs;

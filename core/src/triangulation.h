@@ -77,6 +77,13 @@ class RegularTriangulation {
   /// with other vertices): O(1) instead of a search around a vertex.
   bool is_cell(const Tet& t, CellRef ref) const;
 
+  /// A hint to the processor that is_cell(t, ref) and the points of t will
+  /// be read soon (beyond the paper, issue 15: rule 6's queue reads its cells
+  /// in order, long after they were made, and each read was a cache miss).
+  /// `stage` 0 fetches the cell; 1, a little later, its vertices and t's
+  /// points. Changes nothing and answers nothing.
+  void prefetch(const Tet& t, CellRef ref, int stage) const;
+
   /// Every finite cell, positively oriented.
   std::vector<Tet> finite_cells() const;
   /// The same cells with a CellRef each (for is_cell(t, ref), which is O(1)).

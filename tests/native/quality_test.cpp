@@ -262,10 +262,9 @@ TEST(Quality, DegenerateTetsAreWellDefined) {
   expect_well_defined(tet_quality(a, b, c, d, &w));
 }
 
-TEST(Quality, MinDihedralAloneIsTetQualitysBitForBit) {
-  // The mesher's sliver scans use tet_min_dihedral_deg in place of
-  // tet_quality: the same double (compared by ==) on random tets, flat and
-  // nearly flat ones, needles, coincident points and tets far from 1 in scale.
+// Random tets, flat and nearly flat ones, needles, coincident points and tets
+// far from 1 in scale.
+std::vector<std::array<Point3, 4>> awkward_tets() {
   std::mt19937_64 rng(777);
   std::uniform_real_distribution<double> u(-1, 1);
   std::vector<std::array<Point3, 4>> tets;
@@ -285,13 +284,45 @@ TEST(Quality, MinDihedralAloneIsTetQualitysBitForBit) {
   tets.push_back({{a, a, b, c}});
   tets.push_back({{a, a, a, a}});
   tets.push_back({{a, b, Point3{{2, 0, 0}}, Point3{{3, 0, 0}}}});
+  return tets;
+}
+
+TEST(Quality, MinDihedralAloneIsTetQualitysBitForBit) {
+  // The mesher's sliver scans use tet_min_dihedral_deg in place of
+  // tet_quality: the same double (compared by ==).
   int small = 0;
-  for (const auto& p : tets) {
+  for (const auto& p : awkward_tets()) {
     const double m = tet_min_dihedral_deg(p[0], p[1], p[2], p[3]);
     EXPECT_EQ(m, tet_quality(p[0], p[1], p[2], p[3]).min_dihedral_deg);
     small += m < 3;
   }
   EXPECT_GT(small, 50);  // the nearly flat ones are slivers
+}
+
+TEST(Quality, MinDihedralUpToABoundIsTheFullMeasureAtOrBelowIt) {
+  // Rule 7's scan (issue 15) skips the angles certainly above theta: at or
+  // below the bound the answer is tet_min_dihedral_deg's double, above it
+  // any value above the bound. Bounds at the tet's own angle and one ulp on
+  // either side probe the certificate's margin.
+  int at_or_below = 0, above = 0;
+  for (const auto& p : awkward_tets()) {
+    const double m = tet_min_dihedral_deg(p[0], p[1], p[2], p[3]);
+    std::vector<double> bounds{0, 1e-3, 0.5, 3, 5, 15, 45, 88.9, 89, 120};
+    for (double b : {m, std::nextafter(m, 0.0), std::nextafter(m, 180.0)})
+      if (b >= 0) bounds.push_back(b);
+    for (double b : bounds) {
+      const double u = tet_min_dihedral_deg_upto(p[0], p[1], p[2], p[3], b);
+      if (m <= b) {
+        EXPECT_EQ(u, m) << "bound " << b;
+        ++at_or_below;
+      } else {
+        EXPECT_GT(u, b) << "angle " << m;
+        ++above;
+      }
+    }
+  }
+  EXPECT_GT(at_or_below, 500);
+  EXPECT_GT(above, 500);
 }
 
 TEST(Quality, EqualWeightsGiveOrthoradiusSquaredRMinusW) {

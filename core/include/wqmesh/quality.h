@@ -54,6 +54,12 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
 /// arithmetic), without the other measures: for the mesher's sliver scans.
 double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
+/// tet_min_dihedral_deg(a, b, c, d), the same double, when that is at most
+/// `bound`; otherwise some value above `bound` (180 when every angle is):
+/// the angles certainly above the bound are not computed (issue 15, rule
+/// 7's scan of every tet for the ones at theta or less).
+double tet_min_dihedral_deg_upto(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double bound);
+
 /// The signed volume of a tet (> 0 when positively oriented) as a scaled
 /// value v and an `exponent`: the volume is v * 2^exponent, |v| < 2 (the
 /// longest edge component is scaled into [1, 2)), so its sign is right and

@@ -88,14 +88,11 @@ void Queues::enqueue_around(int v) {
   // triangles are then found from its edges to the other ring vertices.
   constexpr std::size_t kFan = 48;
   std::vector<Tri> pair;
-  // The ring vertices on P with their facets, in the ring's order, and how
-  // many ring vertices each facet holds: a triangle of facet f with every
-  // vertex in the ring needs three ring vertices in f (only the vertices
-  // whose facets_of holds f are in f's planar triangulation), so the star of
-  // a vertex other than v in a facet with fewer is not walked (issue 15; the
-  // same triangles are considered, in the same order).
+  // The ring vertices on P with their facets, in the ring's order, and which
+  // ring vertices each facet holds (only the vertices whose facets_of holds f
+  // are in f's planar triangulation).
   std::vector<std::pair<int, int>>& on_facets = ring_facets_;
-  std::vector<int>& facet_list = ring_facet_list_;
+  std::vector<std::pair<int, int>>& facet_list = ring_facet_list_;
   on_facets.clear();
   facet_list.clear();
   for (int x : ring) {
@@ -103,31 +100,44 @@ void Queues::enqueue_around(int v) {
     sub_.facets_of(x, fs);
     for (int f : fs) {
       on_facets.push_back({x, f});
-      facet_list.push_back(f);
+      facet_list.push_back({f, x});
     }
   }
+  // facet_list holds (facet, ring vertex) pairs, sorted: the ring vertices of
+  // facet f with ids above x are counted by a binary search.
   std::sort(facet_list.begin(), facet_list.end());
-  auto ring_vertices_in = [&](int f) {
-    const auto r = std::equal_range(facet_list.begin(), facet_list.end(), f);
-    return r.second - r.first;
+  auto ring_vertices_above = [&](int f, int x) {
+    return std::upper_bound(facet_list.begin(), facet_list.end(), std::pair{f, std::numeric_limits<int>::max()}) -
+           std::upper_bound(facet_list.begin(), facet_list.end(), std::pair{f, x});
   };
+  // The walk at a ring vertex x other than v looks only for the triangles of
+  // f whose smallest id is x (beyond the paper, issue 15, step 5): a triangle
+  // of f with every vertex in the ring is first met at its smallest vertex,
+  // which comes first in the ring's order (sorted by id), and that walk is
+  // never skipped; at a larger vertex it is a repeat that `seen` would drop.
+  // So the walk at x is skipped when f holds fewer than two ring vertices
+  // above x (no such triangle), and the edge walks of a fan apex x go to the
+  // ring vertices above x only. The same triangles are considered, in the
+  // same order, as by walking every star; v's star is walked whole, as its
+  // triangles are new whatever their vertices.
+  auto starts_at = [](int x, const Tri& t) { return t[0] >= x && t[1] >= x && t[2] >= x; };
   for (const auto& [x, f] : on_facets) {
-    if (x != v && ring_vertices_in(f) < 3) continue;
+    if (x != v && ring_vertices_above(f, x) < 2) continue;
     // v's own star is always walked whole.
     const std::size_t cap = x == v ? std::numeric_limits<std::size_t>::max() : kFan;
     meter_.poll(1);
     if (sub_.facet_triangulation(f).incident_triangles(x, around, cap)) {
       meter_.poll(around.size());
       for (const Tri& t : around)
-        if (x == v || (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
+        if (x == v || (starts_at(x, t) && in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2]))) consider(f, t);
       continue;
     }
     for (int y : ring) {
-      if (y == x || y == v || !sub_.on_p(y)) continue;  // a free y is in no facet
+      if (y <= x || y == v || !sub_.on_p(y)) continue;  // a free y is in no facet
       meter_.poll(1);
       sub_.facet_triangulation(f).edge_triangles(x, y, pair);
       for (const Tri& t : pair)
-        if (in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
+        if (starts_at(x, t) && in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
     }
   }
   if (meter_.phase() == Phase::refine)
@@ -164,6 +174,11 @@ bool Queues::process(Inserter& inserter, const Rule6& rule6) {
       continue;
     }
     if (refine_phase && !tets_.empty()) {
+      // The queue's cells are read in order, long after they were queued:
+      // fetched ahead (issue 15; no effect on any answer).
+      constexpr std::size_t kAhead = 8;
+      if (tets_.size() > kAhead) tri_.prefetch(tets_[kAhead].first, tets_[kAhead].second, 0);
+      if (tets_.size() > kAhead / 2) tri_.prefetch(tets_[kAhead / 2].first, tets_[kAhead / 2].second, 1);
       const auto [t, ref] = tets_.front();
       tets_.pop_front();
       if (rule6(t, ref)) meter_.tick();

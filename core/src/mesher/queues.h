@@ -77,8 +77,8 @@ class Queues {
   /// Queues subsegment s under its key k, noting when (Subsegment::queued_at).
   void queue(std::uint64_t k, const Subsegment& s);
   std::vector<int> ring_;
-  std::vector<std::pair<int, int>> ring_facets_;  ///< (ring vertex, facet)
-  std::vector<int> ring_facet_list_;
+  std::vector<std::pair<int, int>> ring_facets_;      ///< (ring vertex, facet)
+  std::vector<std::pair<int, int>> ring_facet_list_;  ///< (facet, ring vertex), sorted
   std::vector<unsigned> ring_mark_;
   unsigned stamp_ = 0;
 };

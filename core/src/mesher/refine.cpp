@@ -13,9 +13,10 @@ namespace wqmesh::mesher {
 
 namespace {
 
-// The smallest dihedral angle of a tet, in degrees.
-double min_dihedral(const RegularTriangulation& tri, const Tet& t) {
-  return tet_min_dihedral_deg(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]));
+// The smallest dihedral angle of a tet, in degrees, when it is at most
+// `bound` (the same double as tet_min_dihedral_deg); else a value above it.
+double min_dihedral_upto(const RegularTriangulation& tri, const Tet& t, double bound) {
+  return tet_min_dihedral_deg_upto(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]), bound);
 }
 }  // namespace
 
@@ -88,7 +89,9 @@ bool Refine::rule7_pass() {
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
     if (!meter_.poll(1, false)) return false;
     if (!inside[i] || std::find(g.cells[i].begin(), g.cells[i].end(), kInfinite) != g.cells[i].end()) continue;
-    const double angle = min_dihedral(tri_, g.cells[i]);
+    // Only the angles at theta or less matter: the others are skipped
+    // (issue 15; the same candidates and angles).
+    const double angle = min_dihedral_upto(tri_, g.cells[i], opt_.theta_deg);
     if (angle <= opt_.theta_deg)
       for (int v : g.cells[i]) candidates.push_back({angle, v});
   }
