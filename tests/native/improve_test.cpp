@@ -863,11 +863,12 @@ TEST(Improve, AFlipThatMakesASkinnyTetOutsideTheBallsIsRefused) {
 // guard, as if PUMP had left its result) raises the worst min-sine 0.401 ->
 // 0.419 but makes a skinny tet (R/l 2.25) outside the balls; with
 // `with_far_tet`, also a flat tet (min-sine about 0.29) inside a protecting
-// ball far away, near a small angle, so not a violation.
-static Config violation_left_by_pump(bool with_far_tet) {
+// ball far away, near a small angle, so not a violation. `apex3` and
+// `apex4` replace the apexes 3 and 4 of the pair.
+static Config violation_left_by_pump(bool with_far_tet, const Point3& apex3 = {{0.175, 0.125, 0.3}},
+                                     const Point3& apex4 = {{0.45, 0.2, -0.45}}) {
   Config c;
-  c.r.mesh.vertices = {
-      {{-0.2, -0.75, 0}}, {{0.95, 0.65, 0}}, {{-0.6, 0.2, 0}}, {{0.175, 0.125, 0.3}}, {{0.45, 0.2, -0.45}}};
+  c.r.mesh.vertices = {{{-0.2, -0.75, 0}}, {{0.95, 0.65, 0}}, {{-0.6, 0.2, 0}}, apex3, apex4};
   c.add_tet(0, 1, 2, 3);
   c.add_tet(0, 1, 2, 4);
   if (with_far_tet) {
@@ -927,6 +928,40 @@ TEST(Improve, AViolationIsNotFixedAtTheCostOfTheMeshsWorstTet) {
   im.finish();
   EXPECT_GE(worst(c.r.mesh), before);
   EXPECT_EQ(c.r.improve.flips32, 0u);
+  expect_positive(c.r);
+}
+
+TEST(Improve, AViolationThatNoChangeAbove20DegreesRemovesIsFixedAbove10Degrees) {
+  // fix_violations' second rule (kFixSecondDeg). The pair over 012 with the
+  // apexes 3 and 4 has a worst min-sine of 0.302 (17.6 degrees), its 2-3
+  // flip 0.476 with two skinny tets (R/l 2.76 and 2.58) outside the balls:
+  // the flip back removes both violations, with a new worst below
+  // sin(kImproveTargetDeg) (the first rule refuses it) but above
+  // sin(kFixSecondDeg) and above the mesh's worst (the far tet's, 0.292).
+  const Point3 apex3{{0.3, 0.17, 0.29}}, apex4{{0.31, 0.32, -0.28}};
+  Config c = violation_left_by_pump(true, apex3, apex4);
+  const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
+  ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 2u);
+  const double before = worst(c.r.mesh);
+  const double second = std::sin(mesher::kFixSecondDeg * geometry::kPi / 180),
+               target = std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180);
+  const mesher::ProtectingBalls balls = index_of({far});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  ASSERT_TRUE(im.run());
+  im.finish();
+  EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
+  EXPECT_EQ(c.r.improve.flips32, 1u);
+  // The tets of the pair's region: at least sin(kFixSecondDeg), and below
+  // sin(kImproveTargetDeg), so no change of the first rule made them.
+  double region = HUGE_VAL;
+  for (const auto& t : c.r.mesh.tets)
+    if (*std::min_element(t.begin(), t.end()) < 5)  // not the far tet (5-8)
+      region = std::min(region, min_sine(c.r.mesh.vertices[t[0]], c.r.mesh.vertices[t[1]], c.r.mesh.vertices[t[2]],
+                                         c.r.mesh.vertices[t[3]]));
+  EXPECT_GE(region, second);
+  EXPECT_LT(region, target);
+  EXPECT_GE(worst(c.r.mesh), before);
   expect_positive(c.r);
 }
 

@@ -389,8 +389,7 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
 }
 
 bool Improver::beats(double worst_new, double worst_old) const {
-  return worst_new > worst_old ||
-         (fixing_ && worst_new >= std::sin(kImproveTargetDeg * geometry::kPi / 180) && worst_new > fix_floor_);
+  return worst_new > worst_old || (fixing_ && worst_new >= fix_min_ && worst_new > fix_floor_);
 }
 
 bool Improver::admissible(const Tet& T, double size_cap) const {
@@ -958,23 +957,34 @@ std::size_t Improver::fix_violations() {
   if (list.empty()) return 0;
   const MeshWorst worst = mesh_worst();
   fix_floor_ = std::max(worst.sine, std::sin(worst.dihedral_deg * geometry::kPi / 180));
+  // One attempt on violation t under the current fix_min_: flips, the
+  // insertion of a Steiner point, then the removal of one of its Steiner
+  // vertices (a skinny tet's short edge; contract_vertex() under the same
+  // rule and guards).
+  const auto attempt = [&](int t) {
+    if (improve_tet(t) || insert(t)) return true;
+    const Tet T = tets_[t];
+    for (int v : T)
+      if (contract_vertex(v)) return true;
+    return false;
+  };
+  const double target = std::sin(kImproveTargetDeg * geometry::kPi / 180);
+  const double second = std::sin(kFixSecondDeg * geometry::kPi / 180);
   std::size_t n = 0;
   fixing_ = true;
   for (int t : list) {
     if (!poll()) break;
     if (!alive(t) || tet_class(t) != TetClass::violation) continue;
     if (t < int(fix_tried_.size()) && !fresh_since(fix_tried_[t], tets_[t])) continue;
-    if (improve_tet(t) || insert(t)) {
+    // The second rule only where the first leaves the violation (each
+    // refused attempt changes nothing, so t is still the same violation).
+    fix_min_ = target;
+    if (attempt(t)) {
       ++n;
       continue;
     }
-    // Then the removal of one of its Steiner vertices (a skinny tet's short
-    // edge; contract_vertex() under the same relaxed rule and guards).
-    const Tet T = tets_[t];
-    bool contracted = false;
-    for (int v : T)
-      if (!contracted && contract_vertex(v)) contracted = true;
-    if (contracted) {
+    fix_min_ = second;
+    if (attempt(t)) {
       ++n;
       continue;
     }

@@ -19,8 +19,9 @@
 // the new tets fill exactly the old region, the worst tet of the mesh never
 // gets worse and nothing is ever inverted. One exception, beyond the rule:
 // a change made to remove violations (Improver::fix_violations) may also be
-// kept when its new worst is at least sin(kImproveTargetDeg), so the worst
-// tet of the mesh never gets worse while it is below kImproveTargetDeg.
+// kept when its new worst is at least sin(kImproveTargetDeg), or, where no
+// such change removes the violation, sin(kFixSecondDeg), and beats the mesh's
+// worst, so the worst tet of the mesh never gets worse.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -50,6 +51,11 @@ constexpr double kImproveTargetDeg = 20;
 /// Insertion is tried on the tets still below sin(kInsertBelowDeg) after a
 /// pass's flips and smoothing.
 constexpr double kInsertBelowDeg = 10;
+/// fix_violations' second rule: where no change with a new worst of at least
+/// sin(kImproveTargetDeg) removes a violation, one with a new worst of at
+/// least sin(kFixSecondDeg) (and above the mesh's worst) may (10: no new tet
+/// where insertion would be tried, none under issue 14's 5 degrees).
+constexpr double kFixSecondDeg = 10;
 /// Edge removal handles rings of at most this many tets (the dynamic
 /// programme over the ring's polygon is O(n^3)).
 constexpr int kMaxRing = 7;
@@ -195,10 +201,14 @@ class Improver {
   /// protecting balls), then the contraction of one of its Steiner vertices
   /// (contract_vertex). Beyond the phase's min-sine rule: such a change must
   /// remove violations, and its new worst min-sine must beat the old one or
-  /// be at least sin(kImproveTargetDeg) and beat fix_floor_ (the mesh's
-  /// worst, by min-sine and by smallest dihedral angle, when the fixing
-  /// starts), so the worst tet of the mesh never gets worse by either
-  /// measure. Returns the changes.
+  /// be at least fix_min_ and beat fix_floor_ (the mesh's worst, by min-sine
+  /// and by smallest dihedral angle, when the fixing starts), so the worst
+  /// tet of the mesh never gets worse by either measure. fix_min_ is
+  /// sin(kImproveTargetDeg); a violation that no such change removes is
+  /// tried again with sin(kFixSecondDeg) (the violation count first: a
+  /// change below the phase's target but with no new tet under 10 degrees;
+  /// anchor.off's last violation, a skinny tet of R/l 2.27 whose best fixes
+  /// reach 19.6-19.9 degrees). Returns the changes.
   std::size_t fix_violations();
   /// L_v^2 of v from its star at the current points (+infinity without one),
   /// ignoring the tets of `skip`.
@@ -249,6 +259,9 @@ class Improver {
   /// change must beat it (a new tet whose min-sine beats sin(D) has every
   /// dihedral angle above D).
   double fix_floor_ = 0;
+  /// While fixing_: the least worst min-sine a relaxed change must reach
+  /// (sin(kImproveTargetDeg), then sin(kFixSecondDeg); see fix_violations).
+  double fix_min_ = 0;
   std::vector<std::int64_t> fix_tried_;
   std::function<bool()> keep_going_;  ///< a copy: callers pass temporaries
   std::vector<Point3>& P_;
