@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/iterator.h>
@@ -41,13 +43,17 @@ struct NoHiddenPoints {
   iterator end() { return nullptr; }
   const_iterator end() const { return nullptr; }
 };
-using Cb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points,
-                                                    NoHiddenPoints>;
+using RCb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points,
+                                                     NoHiddenPoints>;
+// The label byte of the scans (triangulation.h), in the cell's padding.
+using Cb3 = CGAL::Triangulation_cell_base_with_info_3<char, K, RCb3>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
-// 4 vertices, 4 neighbours, the TDS mark (72 bytes natively); the bound
-// leaves a pointer's room for a compiler's padding, not the list's three.
-static_assert(sizeof(Rt::Cell) <= 10 * sizeof(void*), "a cell: 4 vertices, 4 neighbours and the TDS mark, no more");
+// 4 vertices, 4 neighbours, the TDS mark and the label byte (72 bytes
+// natively); the bound leaves a pointer's room for a compiler's padding, not
+// the list's three.
+static_assert(sizeof(Rt::Cell) <= 10 * sizeof(void*),
+              "a cell: 4 vertices, 4 neighbours, the TDS mark and the label byte, no more");
 using WPoint = K::Weighted_point_3;
 using BPoint = K::Point_3;
 
@@ -524,6 +530,77 @@ RegularTriangulation::CellGraph RegularTriangulation::cell_graph(const std::func
     for (int k = 0; k < 4; ++k) g.neighbor[i][k] = index.find(&*c->neighbor(k));
   }
   return g;
+}
+
+bool RegularTriangulation::flood_labels(const std::function<bool(int, int, int)>& wall,
+                                        const std::function<bool(std::size_t)>& poll, std::size_t* wall_faces) const {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  auto stop = [&] { return poll && ++n % kEvery == 0 && !poll(kEvery); };
+  const Rt& rt = impl_->rt;
+  std::vector<Rt::Cell_handle> stack;
+  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+    if (stop()) return false;
+    c->info() = 2;  // unknown
+  }
+  if (rt.dimension() < 3) return true;
+  rt.incident_cells(rt.infinite_vertex(), std::back_inserter(stack));
+  for (const Rt::Cell_handle& c : stack) c->info() = 0;
+  // Each cell is pushed once (labelled when pushed): at most |cells| pops.
+  while (!stack.empty()) {
+    if (stop()) return false;
+    const Rt::Cell_handle c = stack.back();
+    stack.pop_back();
+    for (int k = 0; k < 4; ++k) {
+      const Rt::Cell_handle x = c->neighbor(k);
+      if (x->info() != 2) continue;
+      const int a = impl_->id_of(c->vertex((k + 1) % 4)), b = impl_->id_of(c->vertex((k + 2) % 4)),
+                d = impl_->id_of(c->vertex((k + 3) % 4));
+      const bool flip = a != kInfinite && b != kInfinite && d != kInfinite && wall(a, b, d);
+      x->info() = flip ? char(1 - c->info()) : c->info();
+      stack.push_back(x);
+    }
+  }
+  if (wall_faces) {
+    // Each facet once: from the cell of the lower address.
+    *wall_faces = 0;
+    for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+      if (stop()) return false;
+      for (int k = 0; k < 4; ++k) {
+        if (&*c->neighbor(k) < &*c) continue;
+        const int a = impl_->id_of(c->vertex((k + 1) % 4)), b = impl_->id_of(c->vertex((k + 2) % 4)),
+                  d = impl_->id_of(c->vertex((k + 3) % 4));
+        *wall_faces += a != kInfinite && b != kInfinite && d != kInfinite && wall(a, b, d);
+      }
+    }
+  }
+  return true;
+}
+
+bool RegularTriangulation::visit_labels(const std::function<void(const Tet&, char&)>& visit,
+                                        const std::function<bool(std::size_t)>& poll) const {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
+    visit(impl_->tet_of(c), c->info());
+  }
+  return true;
+}
+
+bool RegularTriangulation::visit_labelled(char label,
+                                          const std::function<void(const Tet&, const std::array<char, 4>&)>& visit,
+                                          const std::function<bool(std::size_t)>& poll) const {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
+    if (c->info() != label) continue;
+    const std::array<char, 4> across{
+        {c->neighbor(0)->info(), c->neighbor(1)->info(), c->neighbor(2)->info(), c->neighbor(3)->info()}};
+    visit(impl_->tet_of(c), across);
+  }
+  return true;
 }
 
 // ---- PlanarDelaunay ----------------------------------------------------------

@@ -131,6 +131,33 @@ class RegularTriangulation {
   /// when it returns false the graph comes back empty (the caller stops).
   CellGraph cell_graph(const std::function<bool(std::size_t)>& poll = {}) const;
 
+  // ---- a label byte in every cell (beyond the paper, issue 15) ----
+  // Each cell holds one byte for the labels of a whole-mesh scan, in room
+  // CGAL's cell leaves unused (the cell is no larger with it), so that a scan
+  // needs no cell graph and no table keyed by cells beside the triangulation
+  // (at the run's peak those were 35-110 bytes per output tet). Like the
+  // walks' marks it is scratch, no part of the triangulation: the calls are
+  // const, and a cell made by a later change holds any value.
+  // `poll` as cell_graph's; each call returns false when it stopped (the
+  // labels are then unusable).
+  /// Labels every cell, finite or not, by a flood fill: the infinite cells
+  /// 0; a cell reached across the facet abc of a labelled cell takes its
+  /// label, flipped (1 - label) when wall(a, b, c) holds (a, b, c finite).
+  /// The labels depend on the order of the fill unless every closed path of
+  /// cells crosses an even number of walls (extract.cpp, even_walls).
+  /// `wall_faces`, when given, gets the number of facets of the
+  /// triangulation for which wall() holds (each facet once).
+  bool flood_labels(const std::function<bool(int a, int b, int c)>& wall,
+                    const std::function<bool(std::size_t)>& poll = {}, std::size_t* wall_faces = nullptr) const;
+  /// Visits every cell, finite or not, in cell_graph's order, with its label,
+  /// which `visit` may change.
+  bool visit_labels(const std::function<void(const Tet& t, char& label)>& visit,
+                    const std::function<bool(std::size_t)>& poll = {}) const;
+  /// Visits every cell whose label is `label`, in cell_graph's order, with
+  /// the labels of its four neighbours (across[k]: the cell opposite t[k]).
+  bool visit_labelled(char label, const std::function<void(const Tet& t, const std::array<char, 4>& across)>& visit,
+                      const std::function<bool(std::size_t)>& poll = {}) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

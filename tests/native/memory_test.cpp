@@ -3,8 +3,9 @@
 // extracted, before the per-tet measures, the classes and the improvement
 // phase are built; the extraction split in two (the mesh, then
 // classify_tets) gives the same result as the whole extraction, and so does
-// a run whose subcomplex was frozen after REFINE; PUMP's compact label table
-// answers as a map does.
+// a run whose subcomplex was frozen after REFINE; the labels kept in the
+// cells are the cell graph's; PUMP's compact label table answers as a map
+// does.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 #include <malloc.h>
@@ -161,6 +162,96 @@ TEST(Memory, FrozenSubcomplexGivesTheSameRunAfterRefine) {
     EXPECT_EQ(b.slivers, a.slivers);
     EXPECT_EQ(b.violations, a.violations);
   }
+}
+
+// The vertex order of a cell in the output (extract.cpp): sorted, then the
+// last two swapped if that took an odd permutation (orientation kept).
+Tet canonical_order(const Tet& t) {
+  Tet s = t;
+  std::sort(s.begin(), s.end());
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += t[i] > t[j];
+  if (inversions % 2) std::swap(s[2], s[3]);
+  return s;
+}
+
+// The labels kept in the cells (label_cells_in_place, no cell graph) are
+// interior_labels' on the cell graph, cell by cell, wherever it says they
+// are free of the order, with each cell's neighbours' labels in
+// visit_labelled, after REFINE (rule 7's scans) and after PUMP (the sliver
+// count's and the extraction's); and the extraction built on them is the
+// one a cell graph gives: the interior cells in canonical order, each in its
+// canonical vertex order (compared by coordinates), with one boundary
+// triangle per face between an inside and an outside cell.
+TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
+  std::vector<std::string> files;
+  for (const char* name : {"spike.off", "slit.off", "edge_facet.off", "thin_wedge.off", "bracket.off"})
+    files.push_back(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
+  int in_place = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const Input in = load(file);
+    const mesher::Domain dom(in.plc, in.analysis);
+    MeshOptions o;
+    ProgressCallback none;
+    mesher::Mesher m(dom, o, none);
+    m.initialize();
+    m.conform();
+    m.refine();
+    for (int stage = 0; stage < 2; ++stage) {
+      SCOPED_TRACE(stage ? "after PUMP" : "after REFINE");
+      if (stage) {
+        m.count_qmesh_slivers();
+        m.pump();
+      }
+      const RegularTriangulation& tri = m.triangulation();
+      const RegularTriangulation::CellGraph g = tri.cell_graph();
+      bool order_free = false;
+      const std::vector<char> expected = mesher::interior_labels(dom, m.subcomplex(), g, m.meter(), false, &order_free);
+      const bool kept = mesher::label_cells_in_place(dom, m.subcomplex(), tri, m.meter(), false);
+      EXPECT_EQ(kept, order_free && m.subcomplex().conforms());
+      if (!kept) continue;
+      ++in_place;
+      std::vector<Tet> cells;
+      std::vector<char> labels;
+      tri.visit_labels([&](const Tet& t, char& label) {
+        cells.push_back(t);
+        labels.push_back(label);
+      });
+      ASSERT_EQ(cells, g.cells);
+      ASSERT_EQ(labels, expected);
+      std::size_t c = 0, inside = 0;
+      tri.visit_labelled(1, [&](const Tet& t, const std::array<char, 4>& across) {
+        while (c < g.cells.size() && expected[c] != 1) ++c;
+        ASSERT_LT(c, g.cells.size());
+        EXPECT_EQ(t, g.cells[c]);
+        for (int k = 0; k < 4; ++k) EXPECT_EQ(across[k], expected[g.neighbor[c][k]]) << "cell " << c << " face " << k;
+        ++c;
+        ++inside;
+      });
+      EXPECT_EQ(inside, static_cast<std::size_t>(std::count(expected.begin(), expected.end(), char(1))));
+      if (!stage) continue;
+      // The extraction against the cell graph's labels.
+      std::vector<Tet> interior;
+      std::size_t faces = 0;
+      for (std::size_t i = 0; i < g.cells.size(); ++i) {
+        if (expected[i] != 1) continue;
+        interior.push_back(canonical_order(g.cells[i]));
+        for (int k = 0; k < 4; ++k) faces += expected[g.neighbor[i][k]] != 1;
+      }
+      std::sort(interior.begin(), interior.end());
+      const MeshResult r = m.extract_mesh();
+      ASSERT_EQ(r.mesh.tets.size(), interior.size());
+      for (std::size_t t = 0; t < interior.size(); ++t)
+        for (int k = 0; k < 4; ++k)
+          ASSERT_EQ(r.mesh.vertices[r.mesh.tets[t][k]], tri.point(interior[t][k])) << "tet " << t << " vertex " << k;
+      EXPECT_EQ(r.mesh.boundary.size(), faces);
+      EXPECT_EQ(r.mesh.boundary_facet.size(), faces);
+      EXPECT_EQ(r.mesh.vertices.capacity(), r.mesh.vertices.size());
+    }
+  }
+  EXPECT_GT(in_place, 0);
 }
 
 // mesh_polyhedron frees V's triangulation and the subcomplex before the

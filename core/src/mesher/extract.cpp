@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -83,6 +84,35 @@ std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, cons
   for (std::size_t i = 0; i < g.cells.size(); ++i)
     if (label[i] == 1 && sub.flat_on_facet(g.cells[i])) label[i] = 0;
   return label;
+}
+
+bool label_cells_in_place(const Domain& dom, const Subcomplex& sub, const RegularTriangulation& tri, WorkMeter& meter,
+                          bool scan) {
+  std::vector<Tri> walls;
+  for (const Subfacet& h : sub.subfacets())
+    if (!dom.is_box_facet(h.facet)) walls.push_back(sorted(h.v));
+  if (!even_walls(walls)) return false;
+  // A sorted list, not a hash set: the same answers in a third of the memory.
+  std::sort(walls.begin(), walls.end());
+  walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
+  const auto is_wall = [&](int a, int b, int c) {
+    return sub.on_p(a) && sub.on_p(b) && sub.on_p(c) &&
+           std::binary_search(walls.begin(), walls.end(), sorted({{a, b, c}}));
+  };
+  std::function<bool(std::size_t)> poll;
+  if (scan) poll = [&](std::size_t n) { return meter.poll(n, false); };
+  // The fill crosses only the walls that are facets of the triangulation:
+  // the labels are free of the order when those are all of them (a run that
+  // conforms; the rule 7 passes of REFINE need not) and even_walls holds.
+  std::size_t faces = 0;
+  if (!tri.flood_labels(is_wall, poll, &faces)) return false;
+  if (faces != walls.size()) return false;
+  // As interior_labels: flat tets lying in an input facet are left out.
+  return tri.visit_labels(
+      [&](const Tet& t, char& label) {
+        if (label == 1 && sub.flat_on_facet(t)) label = 0;
+      },
+      poll);
 }
 
 namespace {
@@ -265,13 +295,33 @@ std::vector<char> Extract::labels(const RegularTriangulation::CellGraph& g, bool
   return inside;
 }
 
-std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels) {
+std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels,
+                                         bool& in_cells) {
   // The inside slivers run() would count now, without building the mesh:
   // the cells run() keeps, each measured in the vertex order run() gives it
   // (the canonical one), so that the count is run()'s.
   scan = {};
   scan_labels.clear();
+  in_cells = false;
   const bool conforming = sub_.conforms();
+  const auto is_sliver = [&](const Tet& cell) {
+    const Tet t = canonical_tet(cell);
+    const TetQuality q = tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
+    return !(q.radius_edge > opt_.rho0) && q.min_dihedral_deg < opt_.theta_deg;
+  };
+  // The labels in the cells when they do not depend on the cells' order
+  // (then they are the flood fill's on any order, the ones run() takes):
+  // no cell graph beside the triangulation (issue 15, the peak memory).
+  if (conforming && label_cells_in_place(dom_, sub_, tri_, meter_, true)) {
+    std::size_t slivers = 0;
+    const bool done = tri_.visit_labelled(
+        1, [&](const Tet& cell, const std::array<char, 4>&) { slivers += is_sliver(cell); },
+        [&](std::size_t n) { return meter_.poll(n, false); });
+    if (!done || meter_.stopped()) return 0;
+    in_cells = true;
+    return slivers;
+  }
+  if (meter_.stopped()) return 0;
   RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
   if (meter_.stopped()) return 0;
   bool order_free = false;
@@ -288,9 +338,7 @@ std::size_t Extract::count_qmesh_slivers(RegularTriangulation::CellGraph& scan, 
   for (std::size_t c = 0; c < cells.size(); ++c) {
     if (!meter_.poll(1, false)) return 0;
     if (!inside[c]) continue;
-    const Tet t = canonical_tet(cells[c]);
-    const TetQuality q = tet_quality(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
-    slivers += !(q.radius_edge > opt_.rho0) && q.min_dihedral_deg < opt_.theta_deg;
+    slivers += is_sliver(cells[c]);
   }
   // PUMP reads the scan's cells and labels only: the neighbours go now, so
   // that they are not held beside PUMP's label table (issue 15, the peak
@@ -322,37 +370,66 @@ MeshResult Extract::mesh() {
   // same on every platform: the interior cells sorted by their canonical
   // vertex tuples, each in its canonical vertex order. When the labels do
   // not depend on the order of the cells (a conforming run whose walls are a
-  // mod-2 cycle: even_walls), they are taken on CGAL's order as it is and
-  // only the interior cells are sorted (an index and a tuple per interior
-  // cell), instead of a second, canonical copy of the whole cell graph with
-  // its sort's entries and ranks (issue 15, the peak memory: the two graphs
-  // were about 140 bytes per output tet on anchor.off); the same cells, the
-  // same order, the same output. Otherwise (a slit, a run that does not
-  // conform) the labels are taken on the canonical graph, as before.
-  RegularTriangulation::CellGraph g = tri_.cell_graph();
-  bool order_free = false;
-  std::vector<char> inside;
-  if (r.conforming) inside = interior_labels(dom_, sub_, g, meter_, false, &order_free);
-  if (!(r.conforming && order_free)) {
-    inside.clear();
-    g = canonical(g);
-    inside = labels(g, r.conforming, false);
-  }
-  struct Entry {
-    Tet t;  ///< canonical vertex order
-    int cell;
+  // mod-2 cycle: even_walls), they are kept in the cells themselves
+  // (label_cells_in_place) and only the interior cells are listed, as their
+  // canonical tuples (issue 15, the peak memory: the whole cell graph with
+  // its labels was about 70 bytes per output tet on anchor.off, and a
+  // second, canonical copy of it as much again); the same cells, the same
+  // order, the same output. Otherwise (a slit, a run that does not conform)
+  // the labels are taken on the canonical graph, as before.
+  //
+  // Each entry is a cell's canonical tuple with the sign bit of t[k] set
+  // when the face opposite t[k] is a boundary face (the cell across it is
+  // not inside): vertex ids are never negative in an interior cell, so the
+  // entries sort by their tuples with the bits masked off, and the list then
+  // becomes the result's tets in place (no second per-tet array).
+  constexpr int kBit = std::numeric_limits<int>::min();
+  const auto masked = [](const Tet& t) { return Tet{{t[0] & ~kBit, t[1] & ~kBit, t[2] & ~kBit, t[3] & ~kBit}}; };
+  // Vertex k of t is vertex perm[k] of the cell, so the cell across t's
+  // face k is the cell's neighbour perm[k].
+  const auto entry = [](const Tet& cell, const std::array<char, 4>& outside) {
+    const std::array<int, 4> perm = canonical_perm(cell);
+    Tet t{{cell[perm[0]], cell[perm[1]], cell[perm[2]], cell[perm[3]]}};
+    for (int k = 0; k < 4; ++k)
+      if (outside[perm[k]]) t[k] |= kBit;
+    return t;
   };
-  std::vector<Entry> order;
-  order.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), char(1))));
-  for (std::size_t c = 0; c < g.cells.size(); ++c)
-    if (inside[c]) order.push_back({canonical_tet(g.cells[c]), static_cast<int>(c)});
+  std::vector<Tet> order;
+  if (r.conforming && label_cells_in_place(dom_, sub_, tri_, meter_, false)) {
+    std::size_t n = 0;
+    tri_.visit_labelled(1, [&](const Tet&, const std::array<char, 4>&) { ++n; });
+    order.reserve(n);
+    tri_.visit_labelled(1, [&](const Tet& cell, const std::array<char, 4>& across) {
+      order.push_back(entry(cell, {{across[0] != 1, across[1] != 1, across[2] != 1, across[3] != 1}}));
+    });
+  } else {
+    RegularTriangulation::CellGraph g = canonical(tri_.cell_graph());
+    const std::vector<char> inside = labels(g, r.conforming, false);
+    order.reserve(static_cast<std::size_t>(std::count(inside.begin(), inside.end(), char(1))));
+    for (std::size_t c = 0; c < g.cells.size(); ++c) {
+      if (!inside[c]) continue;
+      const std::array<int, 4>& nb = g.neighbor[c];
+      order.push_back(entry(g.cells[c], {{!inside[nb[0]], !inside[nb[1]], !inside[nb[2]], !inside[nb[3]]}}));
+    }
+  }
   // No two cells have the same four vertices: the order is the tuples'.
-  std::sort(order.begin(), order.end(), [](const Entry& a, const Entry& b) { return a.t < b.t; });
+  std::sort(order.begin(), order.end(), [&](const Tet& a, const Tet& b) { return masked(a) < masked(b); });
 
-  // Which input facet each wall triangle lies in.
-  std::unordered_map<Tri, int, TriHash> facet_of;
+  // Which input facet each wall triangle lies in: the subfacets by their
+  // sorted triangle, the last of equal ones as a map assigned in their
+  // order would keep (a sorted list: a hash map took three times the memory).
+  std::vector<std::pair<Tri, int>> facet_of;
   for (const Subfacet& h : sub_.subfacets())
-    if (!dom_.is_box_facet(h.facet)) facet_of[sorted(h.v)] = h.facet;
+    if (!dom_.is_box_facet(h.facet)) facet_of.push_back({sorted(h.v), h.facet});
+  std::stable_sort(facet_of.begin(), facet_of.end(),
+                   [](const std::pair<Tri, int>& a, const std::pair<Tri, int>& b) { return a.first < b.first; });
+  const auto facet_lookup = [&](const Tri& f, int& facet) {
+    const auto it = std::upper_bound(facet_of.begin(), facet_of.end(), f,
+                                     [](const Tri& x, const std::pair<Tri, int>& e) { return x < e.first; });
+    if (it == facet_of.begin() || std::prev(it)->first != f) return false;
+    facet = std::prev(it)->second;
+    return true;
+  };
 
   // A wall triangle that is no subfacet: where cocircular points of a facet
   // make a flat tet in Del V (both diagonals of their quadrilateral are then
@@ -376,44 +453,54 @@ MeshResult Extract::mesh() {
   TetMesh& mesh = r.mesh;
   bool weighted = false;
   for (std::size_t v = 0; v < verts_.size(); ++v) weighted = weighted || tri_.weight(int(v)) != 0;
+  const auto is_input_vertex = [&](std::size_t v) {
+    return verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices;
+  };
+  // The result's arrays at their exact sizes (the result outlives the
+  // triangulation: no slack of a growing array at the peak): the vertices
+  // are the input ones and those of the interior cells (marked -2 here, any
+  // negative value is "no id yet" below), the boundary faces are the bits.
+  std::size_t vertices = 0, faces = 0;
+  for (const Tet& e : order)
+    for (int k = 0; k < 4; ++k) {
+      new_id[e[k] & ~kBit] = -2;
+      faces += e[k] < 0;
+    }
+  for (std::size_t v = 0; v < verts_.size(); ++v) vertices += new_id[v] == -2 || is_input_vertex(v);
+  mesh.vertices.reserve(vertices);
+  if (weighted) mesh.weights.reserve(vertices);
+  r.nearest_neighbour.reserve(vertices);
+  r.input_vertex.reserve(vertices);
+  mesh.boundary.reserve(faces);
+  mesh.boundary_facet.reserve(faces);
   auto id = [&](int v) {
     if (new_id[v] < 0) {
       new_id[v] = static_cast<int>(mesh.vertices.size());
       mesh.vertices.push_back(tri_.point(v));
       if (weighted) mesh.weights.push_back(tri_.weight(v));
       r.nearest_neighbour.push_back(nn_[v]);
-      r.input_vertex.push_back(verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices ? verts_[v].element
-                                                                                                     : -1);
+      r.input_vertex.push_back(is_input_vertex(v) ? verts_[v].element : -1);
     }
     return new_id[v];
   };
   // Input vertices first, in their order, so that vertex i of the PLC is
   // vertex i of the mesh.
   for (std::size_t v = 0; v < verts_.size(); ++v)
-    if (verts_[v].on == On::vertex && verts_[v].element < dom_.input_vertices) id(static_cast<int>(v));
+    if (is_input_vertex(v)) id(static_cast<int>(v));
   static const int kOutward[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  mesh.tets.reserve(order.size());
-  for (const Entry& e : order) {
-    const Tet& t = e.t;
-    // Vertex k of t is vertex perm[k] of the cell, so the cell across t's
-    // face k is the cell's neighbour perm[k].
-    const std::array<int, 4> perm = canonical_perm(g.cells[e.cell]);
-    mesh.tets.push_back({{id(t[0]), id(t[1]), id(t[2]), id(t[3])}});
+  for (Tet& e : order) {
+    const Tet bits = e;
+    const Tet t = masked(e);
+    e = {{id(t[0]), id(t[1]), id(t[2]), id(t[3])}};
     for (int k = 0; k < 4; ++k) {
-      if (inside[g.neighbor[e.cell][perm[k]]]) continue;
+      if (bits[k] >= 0) continue;  // the cell across face k is inside
       const Tri f{{t[kOutward[k][0]], t[kOutward[k][1]], t[kOutward[k][2]]}};
       mesh.boundary.push_back({{id(f[0]), id(f[1]), id(f[2])}});
-      const auto it = facet_of.find(sorted(f));
-      mesh.boundary_facet.push_back(it == facet_of.end() ? common_facet(f) : it->second);
+      int facet = -1;
+      mesh.boundary_facet.push_back(facet_lookup(sorted(f), facet) ? facet : common_facet(f));
     }
   }
-  // Exactly the size: the result outlives the triangulation (the peak).
-  mesh.vertices.shrink_to_fit();
-  mesh.weights.shrink_to_fit();
-  mesh.boundary.shrink_to_fit();
-  mesh.boundary_facet.shrink_to_fit();
-  r.nearest_neighbour.shrink_to_fit();
-  r.input_vertex.shrink_to_fit();
+  mesh.tets = std::move(order);
   return r;
 }
 

@@ -22,6 +22,19 @@ namespace wqmesh::mesher {
 std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, const RegularTriangulation::CellGraph& g,
                                   WorkMeter& meter, bool scan = false, bool* order_free = nullptr);
 
+/// Beyond the paper (issue 15, the peak memory): interior_labels without a
+/// cell graph, kept in the label bytes of the cells of V's triangulation
+/// (RegularTriangulation::flood_labels): 1 inside, 0 outside (flat tets
+/// lying in an input facet included), exactly interior_labels' labels, when
+/// those are the same for every order of the cells (extract.cpp,
+/// even_walls, and every wall a facet of the triangulation). Returns false
+/// when they may not be (the labels are then unusable:
+/// take interior_labels on a cell graph in the order wanted) or, with
+/// `scan`, when the meter stopped the run (polled as a phase's scan; the
+/// labels are then unusable).
+bool label_cells_in_place(const Domain& dom, const Subcomplex& sub, const RegularTriangulation& tri, WorkMeter& meter,
+                          bool scan);
+
 /// The extraction of the mesh from V, its triangulation and the subcomplex.
 class Extract {
  public:
@@ -39,16 +52,21 @@ class Extract {
   /// protecting_balls), without the per-tet measures and classes: nothing of
   /// the result refers to the triangulation or the subcomplex, so the caller
   /// may free them before classify_tets (mesh_polyhedron.cpp does: issue 15,
-  /// the peak memory). Transient memory beyond the result: one cell graph
-  /// with its labels and the interior cells' canonical order (see the body).
+  /// the peak memory). Transient memory beyond the result: the interior
+  /// cells' canonical order, which becomes the result's tets, and, only when
+  /// label_cells_in_place cannot label the cells, one cell graph with its
+  /// labels (see the body).
   MeshResult mesh();
   /// The inside slivers run() would count now (QMESH's, before PUMP),
   /// without building the mesh; polls, and gives 0 once the run must stop.
-  /// `scan` and `scan_labels` get the cell graph's cells (CGAL's order; no
-  /// neighbours: PUMP does not read them) and their interior_labels, which
-  /// PUMP's prepare takes instead of scanning the same triangulation again
-  /// (Pump::use_scan); empty when stopped.
-  std::size_t count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels);
+  /// Its labels are kept for PUMP's prepare, which takes them instead of
+  /// scanning the same triangulation again: `in_cells` says that they are
+  /// in the cells' label bytes (label_cells_in_place; Pump::use_cell_labels),
+  /// else `scan` and `scan_labels` get the cell graph's cells (CGAL's order;
+  /// no neighbours: PUMP does not read them) and their interior_labels
+  /// (Pump::use_scan); empty and false when stopped.
+  std::size_t count_qmesh_slivers(RegularTriangulation::CellGraph& scan, std::vector<char>& scan_labels,
+                                  bool& in_cells);
 
  private:
   /// The labels run() takes for g: interior_labels, or RayParity's when the

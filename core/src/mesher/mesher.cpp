@@ -58,11 +58,16 @@ Pump Mesher::make_pump() { return Pump(dom_, opt_, live().tri, verts_, live().su
 void Mesher::pump() {
   meter_.set_phase(Phase::pump);
   Pump p = make_pump();
-  if (sliver_scan_vertices_ == static_cast<long>(verts_.size()))
-    p.use_scan(std::move(sliver_scan_), std::move(sliver_scan_labels_));
+  if (sliver_scan_vertices_ == static_cast<long>(verts_.size())) {
+    if (sliver_scan_in_cells_)
+      p.use_cell_labels();
+    else
+      p.use_scan(std::move(sliver_scan_), std::move(sliver_scan_labels_));
+  }
   sliver_scan_ = {};
   sliver_scan_labels_ = {};
   sliver_scan_vertices_ = -1;
+  sliver_scan_in_cells_ = false;
   p.run();
   nn_ = p.nearest_neighbours();
   pumped_vertices_ = p.pumped_vertices();
@@ -92,14 +97,15 @@ void Mesher::release() {
   sliver_scan_ = {};
   sliver_scan_labels_ = {};
   sliver_scan_vertices_ = -1;
+  sliver_scan_in_cells_ = false;
   released_ = true;
   trim_heap();
 }
 
 std::size_t Mesher::count_qmesh_slivers() {
   const std::size_t n = Extract(dom_, opt_, live().tri, verts_, live().sub, balls_, nn_, meter_)
-                            .count_qmesh_slivers(sliver_scan_, sliver_scan_labels_);
-  sliver_scan_vertices_ = sliver_scan_.cells.empty() ? -1 : static_cast<long>(verts_.size());
+                            .count_qmesh_slivers(sliver_scan_, sliver_scan_labels_, sliver_scan_in_cells_);
+  sliver_scan_vertices_ = sliver_scan_.cells.empty() && !sliver_scan_in_cells_ ? -1 : static_cast<long>(verts_.size());
   return n;
 }
 

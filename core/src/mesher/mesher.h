@@ -127,8 +127,9 @@ class Mesher {
   /// Whether release() ran: V's triangulation then holds no vertex.
   bool released() const { return released_; }
   /// The inside slivers extract() would count now (QMESH's, before PUMP),
-  /// without building the mesh (Extract::count_qmesh_slivers); its scan is
-  /// kept for the next pump() of the same triangulation.
+  /// without building the mesh (Extract::count_qmesh_slivers); its scan (or
+  /// the labels it left in the cells) is kept for the next pump() of the
+  /// same triangulation.
   std::size_t count_qmesh_slivers();
   /// PUMP over this run's pieces (pump() runs it; tests drive it by hand).
   Pump make_pump();
@@ -175,6 +176,7 @@ class Mesher {
   /// none).
   RegularTriangulation::CellGraph sliver_scan_;
   std::vector<char> sliver_scan_labels_;
+  bool sliver_scan_in_cells_ = false;  ///< the scan's labels are in the cells' label bytes
   long sliver_scan_vertices_ = -1;
 };
 

@@ -96,6 +96,41 @@ void Pump::prepare() {
     nn_[v] = nearest_neighbour(tri_, static_cast<int>(v));
   }
   if (meter_.stopped()) return;
+  candidates_.clear();
+  const auto poll = [&](std::size_t n) { return meter_.poll(n, false); };
+  if (cell_labels_) {
+    // The labels in the cells (use_cell_labels): every cell's into the
+    // table, the candidates from the inside ones.
+    cell_labels_ = false;
+    std::size_t cells = 0;
+    tri_.visit_labels([&](const Tet&, char&) { ++cells; });
+    labels_.reset(cells);
+    if (!tri_.visit_labels([&](const Tet& t, char& inside) { labels_.set(key_of(t), inside); }, poll)) return;
+    const bool done = tri_.visit_labelled(
+        1,
+        [&](const Tet& t, const std::array<char, 4>&) {
+          if (std::count(t.begin(), t.end(), kInfinite)) return;
+          const double a = angle_of(t);
+          if (a <= opt_.theta_deg)
+            for (int v : t) candidates_.push_back({a, v});
+        },
+        poll);
+    if (!done) return;
+  } else {
+    prepare_from_scan();
+    if (meter_.stopped()) return;
+  }
+  std::sort(candidates_.begin(), candidates_.end());
+  walls_.clear();
+  vertex_facets_.assign(verts_.size(), {});
+  for (const Subfacet& h : sub_.subfacets()) {
+    const Tri s = sorted(h.v);
+    if (!dom_.is_box_facet(h.facet)) walls_.insert(s);
+    for (int x : h.v) vertex_facets_[x].push_back(s);
+  }
+}
+
+void Pump::prepare_from_scan() {
   // The scan handed by use_scan (the sliver count's, of the same
   // triangulation), else one of its own.
   RegularTriangulation::CellGraph g;
@@ -114,22 +149,14 @@ void Pump::prepare() {
     if (!meter_.poll(1, false)) return;
     labels_.set(key_of(g.cells[i]), inside[i]);
   }
-  // Vertices of inside tets with a dihedral angle <= theta, worst first.
-  candidates_.clear();
+  // Vertices of inside tets with a dihedral angle <= theta (prepare sorts
+  // them, worst first).
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
     if (!meter_.poll(1, false)) return;
     if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
     const double a = angle_of(g.cells[i]);
     if (a <= opt_.theta_deg)
       for (int v : g.cells[i]) candidates_.push_back({a, v});
-  }
-  std::sort(candidates_.begin(), candidates_.end());
-  walls_.clear();
-  vertex_facets_.assign(verts_.size(), {});
-  for (const Subfacet& h : sub_.subfacets()) {
-    const Tri s = sorted(h.v);
-    if (!dom_.is_box_facet(h.facet)) walls_.insert(s);
-    for (int x : h.v) vertex_facets_[x].push_back(s);
   }
 }
 

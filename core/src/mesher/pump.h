@@ -59,6 +59,11 @@ class Pump {
     scan_ = std::move(g);
     scan_labels_ = std::move(inside);
   }
+  /// Tells prepare() that the cells' label bytes of the current
+  /// triangulation hold their interior_labels (label_cells_in_place, by
+  /// Extract::count_qmesh_slivers just before): it reads them there, with
+  /// no cell graph (beyond the paper, issue 15, the peak memory).
+  void use_cell_labels() { cell_labels_ = true; }
   void run();
   /// (smallest dihedral, vertex) for the vertices of inside tets with a
   /// dihedral angle <= theta, worst first, as found by prepare().
@@ -96,6 +101,9 @@ class Pump {
   static constexpr int kCriticalSteps = 256;
 
  private:
+  /// prepare()'s labels and candidates from a cell graph (use_scan's, or
+  /// a scan of its own).
+  void prepare_from_scan();
   double angle_of(const Tet& t) const;
   bool is_wall(int a, int b, int c) const;
   char label(const Tet& t);
@@ -117,6 +125,7 @@ class Pump {
   std::vector<std::pair<double, int>> candidates_;
   RegularTriangulation::CellGraph scan_;  ///< use_scan's, until prepare()
   std::vector<char> scan_labels_;
+  bool cell_labels_ = false;  ///< use_cell_labels(), until prepare()
 };
 
 }  // namespace wqmesh::mesher

@@ -81,19 +81,34 @@ bool Refine::rule7_pass() {
   // outside are discarded at the end), and the features examined are those
   // incident to v and to its neighbours (a choice: the paper does not say how
   // far to look).
-  const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
-  if (meter_.stopped()) return false;
-  const std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, true);
-  if (meter_.stopped()) return false;
   std::vector<std::pair<double, int>> candidates;
-  for (std::size_t i = 0; i < g.cells.size(); ++i) {
-    if (!meter_.poll(1, false)) return false;
-    if (!inside[i] || std::find(g.cells[i].begin(), g.cells[i].end(), kInfinite) != g.cells[i].end()) continue;
+  const auto add = [&](const Tet& t) {
+    if (std::find(t.begin(), t.end(), kInfinite) != t.end()) return;
     // Only the angles at theta or less matter: the others are skipped
     // (issue 15; the same candidates and angles).
-    const double angle = min_dihedral_upto(tri_, g.cells[i], opt_.theta_deg);
+    const double angle = min_dihedral_upto(tri_, t, opt_.theta_deg);
     if (angle <= opt_.theta_deg)
-      for (int v : g.cells[i]) candidates.push_back({angle, v});
+      for (int v : t) candidates.push_back({angle, v});
+  };
+  // The inside cells by the labels in the cells when they do not depend on
+  // the cells' order (label_cells_in_place: no cell graph beside the
+  // triangulation, issue 15, the peak memory), else on a cell graph in
+  // CGAL's order; the candidates are sorted, so their order is free.
+  if (label_cells_in_place(dom_, sub_, tri_, meter_, true)) {
+    if (!tri_.visit_labelled(
+            1, [&](const Tet& t, const std::array<char, 4>&) { add(t); },
+            [&](std::size_t n) { return meter_.poll(n, false); }))
+      return false;
+  } else {
+    if (meter_.stopped()) return false;
+    const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
+    if (meter_.stopped()) return false;
+    const std::vector<char> inside = interior_labels(dom_, sub_, g, meter_, true);
+    if (meter_.stopped()) return false;
+    for (std::size_t i = 0; i < g.cells.size(); ++i) {
+      if (!meter_.poll(1, false)) return false;
+      if (inside[i]) add(g.cells[i]);
+    }
   }
   std::sort(candidates.begin(), candidates.end());
   std::vector<char> done(verts_.size(), 0);
