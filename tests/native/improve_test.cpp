@@ -885,6 +885,16 @@ static Config violation_left_by_pump(bool with_far_tet, const Point3& apex3 = {{
   return c;
 }
 
+// The whole phase on c with the classes of protecting ball `ball` (rho0 2.2,
+// theta 3 degrees); c.r.improve then holds its counts.
+static void run_with_classes(Config& c, const ProtectingBall& ball) {
+  const mesher::ProtectingBalls balls = index_of({ball});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  ASSERT_TRUE(im.run());
+  im.finish();
+}
+
 TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
   Config c = violation_left_by_pump(true);
   const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
@@ -903,11 +913,7 @@ TEST(Improve, AViolationLeftBeforeThePhaseIsWorkedOn) {
     ip.finish();
   }
   EXPECT_EQ(plain.r.improve.changes(), 0u);
-  const mesher::ProtectingBalls balls = index_of({far});
-  Improver im(c.r, 2.2, 0);
-  im.set_classes(&balls, 3);
-  ASSERT_TRUE(im.run());
-  im.finish();
+  run_with_classes(c, far);
   EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
   EXPECT_EQ(c.r.improve.flips32, 1u);
   EXPECT_GE(worst(c.r.mesh), before);
@@ -921,11 +927,7 @@ TEST(Improve, AViolationIsNotFixedAtTheCostOfTheMeshsWorstTet) {
   const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
   ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 1u);
   const double before = worst(c.r.mesh);
-  const mesher::ProtectingBalls balls = index_of({far});
-  Improver im(c.r, 2.2, 0);
-  im.set_classes(&balls, 3);
-  ASSERT_TRUE(im.run());
-  im.finish();
+  run_with_classes(c, far);
   EXPECT_GE(worst(c.r.mesh), before);
   EXPECT_EQ(c.r.improve.flips32, 0u);
   expect_positive(c.r);
@@ -945,11 +947,7 @@ TEST(Improve, AViolationThatNoChangeAbove20DegreesRemovesIsFixedAbove10Degrees) 
   const double before = worst(c.r.mesh);
   const double second = std::sin(mesher::kFixSecondDeg * geometry::kPi / 180),
                target = std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180);
-  const mesher::ProtectingBalls balls = index_of({far});
-  Improver im(c.r, 2.2, 0);
-  im.set_classes(&balls, 3);
-  ASSERT_TRUE(im.run());
-  im.finish();
+  run_with_classes(c, far);
   EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
   EXPECT_EQ(c.r.improve.flips32, 1u);
   // The tets of the pair's region: at least sin(kFixSecondDeg), and below
