@@ -271,7 +271,7 @@ void Improver::forget(const std::vector<int>& ids) {
       for (int v : tets_[t]) --bad_at_[v];
 }
 
-void Improver::learn(const std::vector<int>& ids) {
+void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from) {
   if (!classifier_) return;
   if (shape_.size() < tets_.size()) shape_.resize(tets_.size(), TetClassifier::Shape::good);
   if (L2_.size() < P_.size()) L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0);
@@ -286,7 +286,24 @@ void Improver::learn(const std::vector<int>& ids) {
   }
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  for (int v : verts) L2_[v] = shortest_at(v);
+  if (moved < 0) {
+    for (int v : verts) L2_[v] = shortest_at(v);
+    return;
+  }
+  // Only `moved` changed place (ids is its star): an edge at u != moved
+  // other than (u, moved) is as it was, so when L_u was shorter than the old
+  // (u, moved) it is another edge's and stays unless the new (u, moved) is
+  // shorter; else u's star is read again. The same values as shortest_at().
+  for (int u : verts) {
+    if (u == moved) continue;
+    const double was = geometry::dist2(from, P_[u]);
+    L2_[u] = L2_[u] < was ? std::min(L2_[u], geometry::dist2(P_[moved], P_[u])) : shortest_at(u);
+  }
+  double l2 = HUGE_VAL;
+  for (int t : ids)
+    for (int u : tets_[t])
+      if (u != moved) l2 = std::min(l2, geometry::dist2(P_[u], P_[moved]));
+  L2_[moved] = l2;
 }
 
 Improver::ClassesBefore Improver::classes_before(const std::vector<int>& old) const {
@@ -321,16 +338,19 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
     double l2;
   };
   std::vector<After> after;
+  vert_marks_.reset(P_.size());  // v -> its index in after
   for (const Tet& T : fresh)
     for (int i = 0; i < 4; ++i) {
       double m = HUGE_VAL;
       for (int j = 0; j < 4; ++j)
         if (j != i) m = std::min(m, geometry::dist2(P_[T[i]], P_[T[j]]));
-      auto it = std::find_if(after.begin(), after.end(), [&](const After& a) { return a.v == T[i]; });
-      if (it == after.end())
+      const int at = vert_marks_.get(T[i]);
+      if (at < 0) {
+        vert_marks_.put(T[i], int(after.size()));
         after.push_back({T[i], m});
-      else
-        it->l2 = std::min(it->l2, m);
+      } else {
+        after[at].l2 = std::min(after[at].l2, m);
+      }
     }
   std::vector<int> changed;  // vertices whose L_v changes
   for (After& a : after) {
@@ -351,9 +371,8 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
     if (a.l2 != cur(a.v)) changed.push_back(a.v);
   }
   const auto l2_after = [&](int v) {
-    for (const After& a : after)
-      if (a.v == v) return a.l2;
-    return cur(v);
+    const int at = v < int(P_.size()) ? vert_marks_.get(v) : -1;
+    return at < 0 ? cur(v) : after[at].l2;
   };
   int violations = 0;
   for (const Tet& T : fresh) {
@@ -373,10 +392,20 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
     int bad_inside = 0;
     for (int t : old) bad_inside += has(t, v) && shape_[t] != TetClassifier::Shape::good;
     if (v >= int(bad_at_.size()) || bad_at_[v] - bad_inside <= 0) continue;
-    star(v, S);
-    for (int t : S) {
+    // v's tets of a bad shape outside old, in star order (kept in `before`:
+    // shapes and stars do not change while the same change is judged again).
+    std::size_t at = 0;
+    while (at < before.bad_outside.size() && before.bad_outside[at].first != v) ++at;
+    if (at == before.bad_outside.size()) {
+      star(v, S);
+      std::vector<int> bad;
+      for (int t : S)
+        if (shape_[t] != TetClassifier::Shape::good && set_marks_.get(t) != 1) bad.push_back(t);
+      before.bad_outside.push_back({v, std::move(bad)});
+    }
+    for (int t : before.bad_outside[at].second) {
       // old's tets are marked 1, the tets seen 2.
-      if (shape_[t] == TetClassifier::Shape::good || set_marks_.get(t) >= 1) continue;
+      if (set_marks_.get(t) >= 1) continue;
       set_marks_.put(t, 2);
       const Tet& T = tets_[t];
       allowed += tet_class(t) == TetClass::violation;
@@ -818,6 +847,7 @@ bool Improver::smooth(int v) {
     }
     return classes_change(S, before, tets) <= 0;
   };
+  const Point3 from = P_[v];
   if (!(ascend(v, tets, worst_old, lmin, valid, axes) > worst_old)) return false;
   forget(S);
   for (int t : S) {
@@ -825,7 +855,7 @@ bool Improver::smooth(int v) {
     q_[t] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
     forget_dihedral(t);
   }
-  learn(S);
+  learn(S, v, from);
   ++clock_;
   for (int t : S) touch(tets_[t]);
   ++st_.smoothed;

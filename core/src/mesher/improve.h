@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -145,6 +146,9 @@ class Improver {
   const std::vector<Tet>& tets() const { return tets_; }
   bool alive(int t) const { return tets_[t][0] >= 0; }
   double quality(int t) const { return q_[t]; }
+  /// The class guard's L_v^2 of v (kept current through every change; +inf
+  /// without set_classes).
+  double shortest_edge2(int v) const { return v < int(L2_.size()) ? L2_[v] : HUGE_VAL; }
   const std::vector<Point3>& points() const { return P_; }
   bool movable(int v) const { return !fixed_[v]; }
   const ImproveStats& stats() const { return st_; }
@@ -185,6 +189,8 @@ class Improver {
     /// outside `old`, once computed (those tets do not change while the
     /// same change is judged again, as smooth() does at each step).
     mutable std::vector<std::pair<int, double>> outside;
+    /// classes_change()'s: per vertex, its tets of a bad shape outside `old`.
+    mutable std::vector<std::pair<int, std::vector<int>>> bad_outside;
   };
   ClassesBefore classes_before(const std::vector<int>& old) const;
   /// How many more violations there are when `old` is replaced by `fresh`
@@ -215,9 +221,10 @@ class Improver {
   double shortest_at(int v, const std::vector<int>& skip = {}) const;
   /// The class upkeep of a commit: forget() before the tets `ids` change or
   /// die, learn() after (their shapes, the bad-tet counts at their vertices
-  /// and L_v of their vertices).
+  /// and L_v of their vertices). With moved >= 0, ids is the star of vertex
+  /// `moved`, the only one that changed place (from `from`; smooth()).
   void forget(const std::vector<int>& ids);
-  void learn(const std::vector<int>& ids);
+  void learn(const std::vector<int>& ids, int moved = -1, const Point3& from = {});
   /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
   bool admissible(const Tet& T, double size_cap) const;
   bool poll();
@@ -308,6 +315,7 @@ class Improver {
   mutable Marks star_marks_;  ///< star()'s
   mutable Marks set_marks_;   ///< shortest_at()'s skip, classes_change()'s and replace()'s old
   mutable Marks cav_marks_;   ///< the cavity of insert(), sphere_cavity() and boundary_cavity()
+  mutable Marks vert_marks_;  ///< classes_change()'s vertices of the new tets
   /// The smallest dihedral angle (degrees) of live tet t, kept from its last
   /// computation until forget_dihedral(t) (wherever q_[t] is set anew), so
   /// that mesh_worst() does not recompute every tet's angles on each call.
