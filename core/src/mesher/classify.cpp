@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "geometry.h"
+#include "mesher/mesher.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
@@ -130,8 +131,11 @@ bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   r.tet_class.clear();
   r.orthoradius_edge.clear();
   // The old measures go first, so that they and the new ones are never held
-  // together (issue 15, the peak memory).
+  // together (issue 15, the peak memory), and the memory freed before (the
+  // improvement phase's arrays) goes back to the system (trim_heap), so that
+  // the new measures do not come on top of it in the resident memory.
   std::vector<TetQuality>().swap(r.quality);
+  trim_heap();
   r.quality = mesh_quality(mesh, keep_going, false);
   if (r.quality.size() != mesh.tets.size()) return false;
   // The weighted view (the paper's rho with PUMP's weights): no class uses it.

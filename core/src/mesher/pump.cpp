@@ -37,51 +37,57 @@ bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, doubl
 // No cell has a vertex id below kInfinite (-1): the key of an empty slot.
 constexpr int kNoKey = -2;
 
-void CellLabels::reset(std::size_t n) {
-  std::size_t size = 16;
-  while (3 * size < 4 * n) size *= 2;
-  keys_.assign(size, TetKey{{kNoKey, kNoKey, kNoKey, kNoKey}});
-  labels_.assign(size, 0);
-  mask_ = size - 1;
-  used_ = 0;
+void CellLabels::add_table(std::size_t n) {
+  // Exactly 4/3 n slots (at least 16), not the next power of two, which held
+  // up to twice as many (issue 15: 17 bytes a slot of every cell).
+  const std::size_t size = std::max<std::size_t>(16, (4 * n + 2) / 3);
+  Table t;
+  t.keys.assign(size, TetKey{{kNoKey, kNoKey, kNoKey, kNoKey}});
+  t.labels.assign(size, 0);
+  tables_.push_back(std::move(t));
 }
 
-std::size_t CellLabels::slot(const TetKey& t) const {
-  return static_cast<std::size_t>((std::uint64_t(TetKeyHash()(t)) * 0x9E3779B97F4A7C15ull) >> 17) & mask_;
+void CellLabels::reset(std::size_t n) {
+  tables_.clear();
+  tables_.shrink_to_fit();
+  used_ = 0;
+  add_table(n);
+}
+
+std::size_t CellLabels::Table::slot(const TetKey& t) const {
+  // The hash's high 32 bits scaled to [0, size): any size, no modulo.
+  const std::uint64_t h = (std::uint64_t(TetKeyHash()(t)) * 0x9E3779B97F4A7C15ull) >> 32;
+  const std::size_t size = keys.size();
+  std::size_t i = static_cast<std::size_t>((h * std::uint64_t(size)) >> 32);
+  while (keys[i] != t && keys[i][0] != kNoKey)
+    if (++i == size) i = 0;
+  return i;
 }
 
 const char* CellLabels::find(const TetKey& t) const {
-  if (keys_.empty()) return nullptr;
-  for (std::size_t i = slot(t);; i = (i + 1) & mask_) {
-    if (keys_[i] == t) return &labels_[i];
-    if (keys_[i][0] == kNoKey) return nullptr;
+  for (const Table& table : tables_) {
+    const std::size_t i = table.slot(t);
+    if (table.keys[i] == t) return &table.labels[i];
   }
+  return nullptr;
 }
 
 void CellLabels::set(const TetKey& t, char label) {
-  if (4 * (used_ + 1) > 3 * keys_.size()) grow();
-  for (std::size_t i = slot(t);; i = (i + 1) & mask_) {
-    if (keys_[i] == t) {
-      labels_[i] = label;
-      return;
-    }
-    if (keys_[i][0] == kNoKey) {
-      keys_[i] = t;
-      labels_[i] = label;
-      ++used_;
+  for (Table& table : tables_) {
+    const std::size_t i = table.slot(t);
+    if (table.keys[i] == t) {
+      table.labels[i] = label;
       return;
     }
   }
-}
-
-void CellLabels::grow() {
-  std::vector<TetKey> keys;
-  std::vector<char> labels;
-  keys.swap(keys_);
-  labels.swap(labels_);
-  reset(std::max<std::size_t>(16, keys.size()));  // twice the slots: keys.size() keys at most 3/4 full
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    if (keys[i][0] != kNoKey) set(keys[i], labels[i]);
+  if (tables_.empty() || 4 * (tables_.back().used + 1) > 3 * tables_.back().keys.size())
+    add_table(std::max<std::size_t>(16, used_ / 2));
+  Table& table = tables_.back();
+  const std::size_t i = table.slot(t);
+  table.keys[i] = t;
+  table.labels[i] = label;
+  ++table.used;
+  ++used_;
 }
 
 void Pump::prepare() {
@@ -121,12 +127,22 @@ void Pump::prepare() {
     if (meter_.stopped()) return;
   }
   std::sort(candidates_.begin(), candidates_.end());
+  const std::vector<Subfacet> subfacets = sub_.subfacets();
   walls_.clear();
-  vertex_facets_.assign(verts_.size(), {});
-  for (const Subfacet& h : sub_.subfacets()) {
+  for (const Subfacet& h : subfacets)
+    if (!dom_.is_box_facet(h.facet)) walls_.push_back(sorted(h.v));
+  std::sort(walls_.begin(), walls_.end());
+  walls_.erase(std::unique(walls_.begin(), walls_.end()), walls_.end());
+  walls_.shrink_to_fit();
+  vertex_facet_start_.assign(verts_.size() + 1, 0);
+  for (const Subfacet& h : subfacets)
+    for (int x : h.v) ++vertex_facet_start_[x + 1];
+  for (std::size_t v = 0; v < verts_.size(); ++v) vertex_facet_start_[v + 1] += vertex_facet_start_[v];
+  vertex_facets_.assign(vertex_facet_start_.back(), Tri{});
+  std::vector<std::size_t> next(vertex_facet_start_.begin(), vertex_facet_start_.end() - 1);
+  for (const Subfacet& h : subfacets) {
     const Tri s = sorted(h.v);
-    if (!dom_.is_box_facet(h.facet)) walls_.insert(s);
-    for (int x : h.v) vertex_facets_[x].push_back(s);
+    for (int x : h.v) vertex_facets_[next[x]++] = s;
   }
 }
 
@@ -200,7 +216,9 @@ double Pump::angle_of(const Tet& t) const {
   return tet_min_dihedral_deg(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
 }
 
-bool Pump::is_wall(int a, int b, int c) const { return walls_.count(sorted({{a, b, c}})) > 0; }
+bool Pump::is_wall(int a, int b, int c) const {
+  return std::binary_search(walls_.begin(), walls_.end(), sorted({{a, b, c}}));
+}
 
 char Pump::label(const Tet& t) {
   // Inside (1) or outside (0). Cells made by a weight change take the label
@@ -259,7 +277,8 @@ Pump::Features Pump::features_around(int v) const {
   Features f;
   for (int x : ring) {
     for (std::uint64_t k : sub_.subsegments_at(x)) f.segments.push_back(k);
-    for (const Tri& t : vertex_facets_[x]) f.subfacets.push_back(t);
+    for (std::size_t i = vertex_facet_start_[x]; i < vertex_facet_start_[x + 1]; ++i)
+      f.subfacets.push_back(vertex_facets_[i]);
   }
   std::sort(f.segments.begin(), f.segments.end());
   f.segments.erase(std::unique(f.segments.begin(), f.segments.end()), f.segments.end());

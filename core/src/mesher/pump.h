@@ -21,12 +21,17 @@
 
 namespace wqmesh::mesher {
 
-/// The inside/outside label of cells by their TetKey: an open-addressing
-/// table (linear probing, at most 3/4 full) with the labels in a byte array
-/// beside the keys, 17 bytes a slot. Beyond the paper (issue 15, the peak
-/// memory): it holds every cell of V's triangulation while PUMP runs, where
-/// a std::unordered_map took about 70 bytes a cell (a node per entry and the
-/// buckets). Only look-ups and stores: the same answers as a map.
+/// The inside/outside label of cells by their TetKey: open-addressing
+/// tables (linear probing, each at most 3/4 full) with the labels in a byte
+/// array beside the keys, 17 bytes a slot. Beyond the paper (issue 15, the
+/// peak memory): it holds every cell of V's triangulation while PUMP runs,
+/// where a std::unordered_map took about 70 bytes a cell (a node per entry
+/// and the buckets). PUMP adds the cells its weight changes make, so the
+/// keys outgrow the first table: then a further table is added beside the
+/// full ones, with room for half as many keys as there are, instead of
+/// rehashing all into one of twice the size (the old and the new table
+/// together were the peak of PUMP, 51 bytes a slot of the old). A key is in
+/// one table only. Only look-ups and stores: the same answers as a map.
 class CellLabels {
  public:
   /// Empties the table, with room for n keys.
@@ -35,13 +40,21 @@ class CellLabels {
   const char* find(const TetKey& t) const;
   /// Sets the label of t (added when it had none).
   void set(const TetKey& t, char label);
+  /// The tables (tests watch the growth).
+  std::size_t tables() const { return tables_.size(); }
 
  private:
-  std::size_t slot(const TetKey& t) const;
-  void grow();
-  std::vector<TetKey> keys_;
-  std::vector<char> labels_;
-  std::size_t used_ = 0, mask_ = 0;
+  struct Table {
+    std::vector<TetKey> keys;
+    std::vector<char> labels;
+    std::size_t used = 0;
+    /// The slot of t, or of the empty slot where t would go.
+    std::size_t slot(const TetKey& t) const;
+  };
+  /// Adds an empty table with room for n keys.
+  void add_table(std::size_t n);
+  std::vector<Table> tables_;
+  std::size_t used_ = 0;  ///< keys in all tables
 };
 
 class Pump {
@@ -120,8 +133,14 @@ class Pump {
   std::size_t pumped_vertices_ = 0;
   std::vector<double> nn_;  ///< N(v), measured by prepare()
   CellLabels labels_;
-  std::unordered_set<Tri, TriHash> walls_;
-  std::vector<std::vector<Tri>> vertex_facets_;
+  /// The walls (the input facets' subfacets), sorted, for binary search;
+  /// and, per vertex v, its subfacets (sorted triangles) at
+  /// vertex_facets_[vertex_facet_start_[v]] up to that of v + 1, in the
+  /// subcomplex's order. Flat arrays (issue 15, the peak memory: a hash set
+  /// and a vector per vertex took twice as much beside PUMP's labels).
+  std::vector<Tri> walls_;
+  std::vector<std::size_t> vertex_facet_start_;
+  std::vector<Tri> vertex_facets_;
   std::vector<std::pair<double, int>> candidates_;
   RegularTriangulation::CellGraph scan_;  ///< use_scan's, until prepare()
   std::vector<char> scan_labels_;
