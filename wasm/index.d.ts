@@ -460,7 +460,7 @@ export interface MeshStats {
     inserted: number;
     /** Steiner vertices removed by edge contraction. */
     contractions: number;
-    /** Of `smoothed`, moves of boundary vertices (each along a coordinate axis its facets run along). */
+    /** Of `smoothed`, moves of boundary vertices (each along a coordinate axis its facets run along, or in the polish across a facet that runs along one axis only). */
     slid: number;
     /** Of `inserted`, points inserted on a facet (with the facet's coordinate off its axes copied exactly). */
     inserted_on_boundary: number;

@@ -453,6 +453,96 @@ double facet_area(const MeshResult& r, int f) {
   return a;
 }
 
+// In-plane slides (improve_boundary.cpp, only in polish()): a facet whose
+// plane runs along one axis only (here y = 2x, along z) gives its vertices the
+// direction across it, (1, 2, 0) up to scale.
+
+// A tet a b c d cut at s on its edge ab, the input edge between the facet
+// y = 2x (a b c) and the facet z = 0 (a b d), at a quarter of ab: the best
+// split is near the middle (min-sine 0.26 at s, 0.68 at the middle; a b c d
+// itself 0.55).
+Config slanted_edge_split() {
+  Config c;
+  c.r.mesh.vertices = {{{0, 0, 0}}, {{2, 4, 0}}, {{1, 2, 1}}, {{1.75, 1.5, 0}}, {{0.5, 1, 0}}};
+  c.add_tet(0, 4, 2, 3);
+  c.add_tet(4, 1, 2, 3);
+  c.close({{{0, 4, 2}, 0}, {{4, 1, 2}, 0}, {{0, 4, 3}, 1}, {{4, 1, 3}, 1}, {{0, 2, 3}, 2}, {{1, 2, 3}, 3}});
+  for (int i = 0; i < 4; ++i) c.r.input_vertex[i] = i;
+  return c;
+}
+
+TEST(ImproveBoundary, ASegmentVertexSlidesAlongASlantedInputEdgeInPolish) {
+  Config c = slanted_edge_split();
+  const int s = 4;
+  const double before = c.worst(), volume = c.volume();
+  Improver im(c.r, 2.2, 0);
+  // No axis keeps s on both planes; the edge's direction does.
+  EXPECT_EQ(im.slide_axes(s), 0);
+  EXPECT_EQ(im.movable_axes(s), 0) << "the in-plane slide only in polish()";
+  const Point3 d = im.plane_direction(s);
+  EXPECT_EQ(d[2], 0);
+  EXPECT_GT(d[0], 0);
+  EXPECT_EQ(d[1], 2 * d[0]);
+  EXPECT_FALSE(im.smooth(s));
+  EXPECT_GT(im.polish(HUGE_VAL), 0u);
+  im.finish();
+  ASSERT_EQ(c.r.mesh.vertices.size(), 5u) << "s was slid, not contracted";
+  const Point3& v = c.r.mesh.vertices[s];
+  // Still exactly on the edge (both planes: y = 2x and z = 0), nearer the middle.
+  EXPECT_EQ(v[1], 2 * v[0]);
+  EXPECT_EQ(v[2], 0);
+  EXPECT_GT(v[0], 0.75);
+  EXPECT_LT(v[0], 1.25);
+  EXPECT_GT(c.worst(), 0.6);
+  EXPECT_GT(c.worst(), before);
+  EXPECT_NEAR(c.volume(), volume, 1e-12);
+  expect_positive(c.r);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(c.r.mesh.vertices[i], slanted_edge_split().r.mesh.vertices[i]);
+}
+
+TEST(ImproveBoundary, AnInPlaneStepIsTakenOnlyWhenItKeepsTheResidualExactly) {
+  Config c = slanted_edge_split();
+  const int s = 4;
+  Improver im(c.r, 2.2, 0);
+  const double h = std::ldexp(1.0, -20);
+  EXPECT_TRUE(im.on_planes_as_before(s, {{0.5 + h, 1 + 2 * h, 0}}));
+  EXPECT_TRUE(im.on_planes_as_before(s, {{0.5 - 3 * h, 1 - 6 * h, 0}}));
+  EXPECT_FALSE(im.on_planes_as_before(s, {{0.5 + h, 1 + 2 * h, h}}));  // off z = 0
+  EXPECT_FALSE(im.on_planes_as_before(s, {{0.5 + h, 1 + h, 0}}));      // off y = 2x
+  // One ulp off the line y = 2x: an exact residual, not a rounded one.
+  EXPECT_FALSE(im.on_planes_as_before(s, {{0.5 + h, std::nextafter(1 + 2 * h, 2.0), 0}}));
+}
+
+TEST(ImproveBoundary, AFacetVertexSlidesAcrossAVerticalSlantedFacetInPolish) {
+  // A pyramid over the quad a b c d in the plane y = 2x (facet 0), apex e,
+  // the quad cut into four triangles at s, off its centre (0.5, 1, 0.5)
+  // towards the edge d a.
+  Config p;
+  p.r.mesh.vertices = {{{0, 0, 0}}, {{1, 2, 0}}, {{1, 2, 1}}, {{0, 0, 1}}, {{1.5, 0.25, 0.5}}, {{0.25, 0.5, 0.5}}};
+  const int s = 5;
+  for (int i = 0; i < 4; ++i) p.add_tet(i, (i + 1) % 4, s, 4);
+  std::map<std::set<int>, int> base;
+  for (int i = 0; i < 4; ++i) base[{i, (i + 1) % 4, s}] = 0;
+  p.close(base);
+  for (int i = 0; i < 5; ++i) p.r.input_vertex[i] = i;
+  const double before = p.worst(), volume = p.volume(), area = facet_area(p.r, 0);
+  Improver im(p.r, 2.2, 0);
+  EXPECT_EQ(im.slide_axes(s), 4);  // along z
+  const Point3 d = im.plane_direction(s);
+  EXPECT_EQ(d[1], 2 * d[0]);
+  EXPECT_EQ(d[2], 0);
+  EXPECT_GT(im.polish(HUGE_VAL), 0u);
+  im.finish();
+  ASSERT_EQ(p.r.mesh.vertices.size(), 6u);
+  const Point3& v = p.r.mesh.vertices[s];
+  EXPECT_EQ(v[1], 2 * v[0]) << "on the plane y = 2x exactly";
+  EXPECT_GT(v[0], 0.25) << "slid across the facet, away from the edge d a";
+  EXPECT_GT(p.worst(), before);
+  EXPECT_NEAR(p.volume(), volume, 1e-12);
+  EXPECT_NEAR(facet_area(p.r, 0), area, 1e-12);
+  expect_positive(p.r);
+}
+
 TEST(Improve, ContractingAnInteriorVertexRemovesASliver) {
   // A regular tet abcd (input vertices) cut into four by an interior vertex v
   // just inside face abc: the tet vabc is flat. Contracting v onto d gives
@@ -1106,6 +1196,65 @@ TEST(Improve, ContractionsNearASmallAngleKeepEveryInvariant) {
                 fs::path(f).filename().c_str(), plain.mesh.tets.size(), r.mesh.tets.size(), under_5_degrees(plain.mesh),
                 under_5_degrees(r.mesh), r.improve.contractions);
   }
+}
+
+// Polish (improve_polish.cpp) on each model's mesh as PUMP leaves it: the
+// smallest dihedral angle never drops, no tet is added and none under 5
+// degrees made, the region and every tet's orientation are kept, and each
+// boundary vertex keeps its exact residual from each of its facets' planes.
+TEST(Improve, PolishNeverLowersTheSmallestAngleNorAddsTets) {
+  std::size_t changes = 0;
+  for (const std::string& f : models()) {
+    SCOPED_TRACE(f);
+    const invariants::Input in = invariants::load(f);
+    MeshOptions off;
+    off.improve = false;
+    MeshResult r = mesh_polyhedron(in.plc, in.analysis, off);
+    const TetMesh plain = r.mesh;
+    const auto smallest = [](const TetMesh& m) {
+      double a = 180;
+      for (const auto& t : m.tets)
+        a = std::min(a, tet_min_dihedral_deg(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]));
+      return a;
+    };
+    const auto volume = [](const TetMesh& m) {
+      double v = 0;
+      for (const auto& t : m.tets)
+        v += tet_volume(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+      return v;
+    };
+    Improver im(r, 2.2, 0);
+    changes += im.polish(HUGE_VAL);
+    im.finish();
+    EXPECT_GE(smallest(r.mesh), smallest(plain));
+    EXPECT_LE(r.mesh.tets.size(), plain.tets.size());
+    EXPECT_LE(under_5_degrees(r.mesh), under_5_degrees(plain));
+    EXPECT_NEAR(volume(r.mesh), volume(plain), 1e-12 * volume(plain));
+    expect_positive(r);
+    // Contractions drop vertices: each boundary vertex's residual from its
+    // facet's plane is one a vertex of that facet had.
+    std::map<int, std::set<CGAL::MP_Float>> was;
+    const auto plane_residual = [&](int f, const Point3& p) {
+      const auto& loop = in.plc.facets[f].loops[0];
+      const Point3& a = in.plc.vertices[loop[0]];
+      std::size_t k = 2;
+      while (k + 1 < loop.size() && CGAL::collinear(cgal::to_cgal(a), cgal::to_cgal(in.plc.vertices[loop[1]]),
+                                                    cgal::to_cgal(in.plc.vertices[loop[k]])))
+        ++k;
+      return residual(a, in.plc.vertices[loop[1]], in.plc.vertices[loop[k]], p);
+    };
+    for (std::size_t b = 0; b < plain.boundary.size(); ++b)
+      for (int v : plain.boundary[b])
+        was[plain.boundary_facet[b]].insert(plane_residual(plain.boundary_facet[b], plain.vertices[v]));
+    for (std::size_t b = 0; b < r.mesh.boundary.size(); ++b)
+      for (int v : r.mesh.boundary[b])
+        EXPECT_TRUE(was[r.mesh.boundary_facet[b]].count(plane_residual(r.mesh.boundary_facet[b], r.mesh.vertices[v])))
+            << "boundary vertex " << v << " left the plane of facet " << r.mesh.boundary_facet[b];
+    std::printf("[ polish   ] %s: smallest dihedral %.3g -> %.3g deg, tets %zu -> %zu\n",
+                fs::path(f).filename().c_str(), smallest(plain), smallest(r.mesh), plain.tets.size(),
+                r.mesh.tets.size());
+  }
+  EXPECT_GT(changes, 0u);
 }
 
 }  // namespace

@@ -422,6 +422,7 @@ bool Improver::beats(double worst_new, double worst_old) const {
 }
 
 bool Improver::admissible(const Tet& T, double size_cap) const {
+  if (polish_floor_deg_ > 0 && !polish_admits(T)) return false;  // polish()'s floor (improve_polish.cpp)
   if (size_cap <= 0) return true;
   double rl, R;
   radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
@@ -431,6 +432,7 @@ bool Improver::admissible(const Tet& T, double size_cap) const {
 bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new,
                       double floor) const {
   double worst_old = HUGE_VAL, size_cap = max_size_;
+  if (polish_floor_deg_ > 0 && !polish_room(old.size(), fresh.size())) return false;  // improve_polish.cpp
   for (int t : old) worst_old = std::min(worst_old, q_[t]);
   if (!std::isnan(floor)) worst_old = floor;
   worst_new = HUGE_VAL;
@@ -753,13 +755,7 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
       const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
       const double w = worst_at(x);
-      if (!(w > current)) continue;
-      const Point3 keep = P_[v];
-      P_[v] = x;
-      if (!valid()) {
-        P_[v] = keep;
-        continue;
-      }
+      if (!(w > current) || !move_if_valid(v, x, valid)) continue;
       current = w;
       q.swap(qx);
       better = true;
@@ -768,6 +764,14 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     if (!better) break;
   }
   return current;
+}
+
+bool Improver::move_if_valid(int v, const Point3& x, const std::function<bool()>& valid) {
+  const Point3 keep = P_[v];
+  P_[v] = x;
+  if (valid()) return true;
+  P_[v] = keep;
+  return false;
 }
 
 Improver::MeshWorst Improver::mesh_worst() const {
@@ -848,7 +852,9 @@ bool Improver::smooth(int v) {
     return classes_change(S, before, tets) <= 0;
   };
   const Point3 from = P_[v];
-  if (!(ascend(v, tets, worst_old, lmin, valid, axes) > worst_old)) return false;
+  double w = ascend(v, tets, worst_old, lmin, valid, axes & 7);
+  if (axes & kPlaneSlide) w = ascend_in_plane(v, tets, w, lmin, valid);  // improve_boundary.cpp
+  if (!(w > worst_old)) return false;
   forget(S);
   for (int t : S) {
     const Tet& T = tets_[t];
@@ -1084,6 +1090,7 @@ bool Improver::run() {
     st_.passes = pass + 1;
     if (changed == 0) break;
   }
+  polish();  // improve_polish.cpp (kPolishWork: off by default)
   return !cancelled_;
 }
 

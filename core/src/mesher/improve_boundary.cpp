@@ -1,9 +1,12 @@
 // wqmesh: the improvement phase's operations at the boundary (beyond the
 // paper, and beyond Stellar, which moves boundary vertices freely): Steiner
 // vertices of the boundary slide along the coordinate axes that leave their
-// facets' planes exactly where they were (see improve.h, "Boundary
-// operations").
+// facets' planes exactly where they were, and in the polish across a facet
+// that runs along one axis only, each step checked exactly (see improve.h,
+// "Boundary operations").
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <CGAL/MP_Float.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -61,6 +64,32 @@ int plane_axes(const std::vector<Point3>& pts) {
   return axes;
 }
 
+/// Three of `corners` (vertex indices into P) not on a line, by CGAL's exact
+/// predicate; {-1, -1, -1} when there are none.
+Tri3 plane_corners(const std::vector<int>& corners, const std::vector<Point3>& P) {
+  for (std::size_t b = 1; b < corners.size(); ++b) {
+    if (P[corners[b]] == P[corners[0]]) continue;
+    for (std::size_t c = b + 1; c < corners.size(); ++c)
+      if (!CGAL::collinear(cgal::to_cgal(P[corners[0]]), cgal::to_cgal(P[corners[b]]), cgal::to_cgal(P[corners[c]])))
+        return {{corners[0], corners[b], corners[c]}};
+  }
+  return {{-1, -1, -1}};
+}
+
+/// n . (p - q) with n = (b - a) x (c - a), in exact arithmetic (MP_Float):
+/// the difference of p's and q's residuals from the plane of abc. Each
+/// coordinate of p - q that is 0 drops its term.
+CGAL::MP_Float exact_residual(const Point3& a, const Point3& b, const Point3& c, const Point3& p, const Point3& q) {
+  using F = CGAL::MP_Float;
+  F u[3], w[3], x[3];
+  for (int i = 0; i < 3; ++i) {
+    u[i] = F(b[i]) - F(a[i]);
+    w[i] = F(c[i]) - F(a[i]);
+    x[i] = p[i] == q[i] ? F(0) : F(p[i]) - F(q[i]);
+  }
+  return (u[1] * w[2] - u[2] * w[1]) * x[0] + (u[2] * w[0] - u[0] * w[2]) * x[1] + (u[0] * w[1] - u[1] * w[0]) * x[2];
+}
+
 }  // namespace
 
 void Improver::init_slides() {
@@ -80,6 +109,8 @@ void Improver::init_slides() {
   std::vector<int>& facet_axes = facet_axes_;
   facet_axes.assign(facets, 0);
   facet_corner_.assign(facets, -1);
+  facet_plane_.assign(facets, {{-1, -1, -1}});
+  facet_dir_.assign(facets, Point3{{0, 0, 0}});
   for (int f = 0; f < facets; ++f) {
     std::sort(corners[f].begin(), corners[f].end());
     corners[f].erase(std::unique(corners[f].begin(), corners[f].end()), corners[f].end());
@@ -87,14 +118,39 @@ void Improver::init_slides() {
     for (int v : corners[f]) pts.push_back(P_[v]);
     facet_axes[f] = plane_axes(pts);
     if (!corners[f].empty()) facet_corner_[f] = corners[f][0];
+    const Tri3 abc = plane_corners(corners[f], P_);
+    facet_plane_[f] = abc;
+    // A facet along exactly one axis i: its in-plane direction across i, the
+    // longest difference of two corners seen along i.
+    const int i = facet_axes[f] == 1 ? 0 : facet_axes[f] == 2 ? 1 : facet_axes[f] == 4 ? 2 : -1;
+    if (i < 0 || abc[0] < 0) continue;
+    double longest = 0;
+    for (int c : corners[f]) {
+      Point3 d = geometry::sub(P_[c], P_[abc[0]]);
+      d[i] = 0;
+      if (geometry::dot(d, d) > longest) longest = geometry::dot(d, d), facet_dir_[f] = d;
+    }
   }
   // A Steiner vertex of the boundary slides along the axes that every facet
   // of its boundary triangles runs along (one facet: within the facet; two:
   // along their common input edge). 7 marks "not yet seen".
   std::vector<std::uint8_t> axes(P_.size(), 7);
+  vertex_facets_.assign(P_.size(), {{-1, -1}});
+  std::vector<char> many(P_.size(), 0);  // on more than two facets, or on a triangle without one
   for (std::size_t b = 0; b < bnd_.size(); ++b) {
     const int f = r_.mesh.boundary_facet[b];
-    for (int v : bnd_[b]) axes[v] &= f < 0 ? 0 : facet_axes[f];
+    for (int v : bnd_[b]) {
+      axes[v] &= f < 0 ? 0 : facet_axes[f];
+      std::array<int, 2>& vf = vertex_facets_[v];
+      if (f < 0)
+        many[v] = 1;
+      else if (vf[0] < 0 || vf[0] == f)
+        vf[0] = f;
+      else if (vf[1] < 0 || vf[1] == f)
+        vf[1] = f;
+      else
+        many[v] = 1;
+    }
   }
   const int open = -1 - int(bnd_.size());
   closed_ = true;
@@ -102,11 +158,28 @@ void Improver::init_slides() {
     for (int k = 0; k < 4; ++k)
       if (nb_[t][k] <= open) {
         closed_ = false;
-        for (int v : tets_[t]) axes[v] = 0;  // a mesh that is not closed: its open faces' tets stay
+        for (int v : tets_[t]) axes[v] = 0, many[v] = 1;  // a mesh that is not closed: its open faces' tets stay
       }
+  plane_facet_.assign(P_.size(), -1);
   for (std::size_t v = 0; v < P_.size(); ++v) {
     const bool input = v < r_.input_vertex.size() && r_.input_vertex[v] >= 0;
-    if (fixed_[v] && !input && axes[v] != 7) slide_[v] = axes[v];
+    if (!fixed_[v] || input || axes[v] == 7) continue;
+    slide_[v] = axes[v];
+    // The in-plane direction of one of v's facets, if it lies in the other
+    // one too (to rounding: each step is checked exactly).
+    const std::array<int, 2>& vf = vertex_facets_[v];
+    for (int j = 0; j < 2 && !many[v] && plane_facet_[v] < 0; ++j) {
+      const int f = vf[j], g = vf[1 - j];
+      if (f < 0 || geometry::dot(facet_dir_[f], facet_dir_[f]) == 0) continue;
+      if (g >= 0) {
+        const Tri3& abc = facet_plane_[g];
+        if (abc[0] < 0) continue;
+        const Point3 n = geometry::cross(geometry::sub(P_[abc[1]], P_[abc[0]]), geometry::sub(P_[abc[2]], P_[abc[0]]));
+        const Point3& d = facet_dir_[f];
+        if (std::fabs(geometry::dot(n, d)) > 1e-9 * std::sqrt(geometry::dot(n, n) * geometry::dot(d, d))) continue;
+      }
+      plane_facet_[v] = f;
+    }
   }
 }
 
@@ -114,7 +187,79 @@ int Improver::slide_axes(int v) const { return v >= 0 && v < int(slide_.size()) 
 
 int Improver::movable_axes(int v) const {
   if (v < 0 || v >= int(fixed_.size())) return 0;
-  return fixed_[v] ? slide_axes(v) : 7;
+  if (!fixed_[v]) return 7;
+  // The in-plane slide only in polish() (improve_polish.cpp), under its floor.
+  const bool plane = polish_floor_deg_ > 0 && v < int(plane_facet_.size()) && plane_facet_[v] >= 0;
+  return slide_axes(v) | (plane ? kPlaneSlide : 0);
+}
+
+Point3 Improver::plane_direction(int v) const {
+  if (v < 0 || v >= int(plane_facet_.size()) || plane_facet_[v] < 0) return {{0, 0, 0}};
+  return facet_dir_[plane_facet_[v]];
+}
+
+bool Improver::on_planes_as_before(int v, const Point3& p) const {
+  if (v < 0 || v >= int(vertex_facets_.size()) || vertex_facets_[v][0] < 0) return false;
+  for (int f : vertex_facets_[v]) {
+    if (f < 0) continue;
+    const Tri3& abc = facet_plane_[f];
+    if (abc[0] < 0) return false;
+    // Linear in p: the same residual iff n . (p - P_[v]) = 0 exactly.
+    if (exact_residual(P_[abc[0]], P_[abc[1]], P_[abc[2]], p, P_[v]) != 0) return false;
+  }
+  return true;
+}
+
+double Improver::ascend_in_plane(int v, const std::vector<Tet>& tets, double current, double lmin,
+                                 const std::function<bool()>& valid) {
+  const Point3 d = plane_direction(v);
+  const double dn = std::sqrt(geometry::dot(d, d));
+  if (!(dn > 0) || !(lmin > 0)) return current;
+  auto worst_at = [&](const Point3& x) {
+    double w = HUGE_VAL;
+    for (const Tet& T : tets) {
+      Point3 p[4];
+      for (int k = 0; k < 4; ++k) p[k] = T[k] == v ? x : P_[T[k]];
+      w = std::min(w, min_sine(p[0], p[1], p[2], p[3]));
+      if (!(w > current)) return w;
+    }
+    return w;
+  };
+  // The point t d from P_[v] nearest to P_[v] + s d / |d| whose coordinates
+  // are exact: t a multiple of a power of two with few bits, so that t d and
+  // the sums are exact where they can be; on_planes_as_before() decides.
+  auto snapped = [&](double s, Point3& x) {
+    for (int k = -40; k <= -16; k += 4) {
+      const double g = std::ldexp(1.0, k), t = std::nearbyint(s / dn / g) * g;
+      if (t == 0) continue;
+      x = P_[v];
+      for (int c = 0; c < 3; ++c)
+        if (d[c] != 0) x[c] += t * d[c];
+      if (x != P_[v] && on_planes_as_before(v, x)) return true;
+    }
+    return false;
+  };
+  // As ascend(): up to kSmoothSteps steps, each the longest of a halving
+  // line search from lmin / 5 (either way along d) that raises the worst and
+  // passes valid().
+  for (int step = 0; step < kSmoothSteps; ++step) {
+    bool better = false;
+    for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin && !better; alpha *= 0.5)
+      for (double s : {alpha, -alpha}) {
+        // The point before snapping first (snapping moves it by a relative
+        // 1e-12 or so; the exact check is the costly part).
+        if (!(worst_at(geometry::add(P_[v], geometry::mul(d, s / dn))) > current)) continue;
+        Point3 x;
+        if (!snapped(s, x)) continue;
+        const double w = worst_at(x);
+        if (!(w > current) || !move_if_valid(v, x, valid)) continue;
+        current = w;
+        better = true;
+        break;
+      }
+    if (!better) break;
+  }
+  return current;
 }
 
 bool Improver::insert_boundary(int t) {
@@ -193,12 +338,20 @@ bool Improver::add_point(const Point3& p, const std::vector<int>& old, const std
   vtet_.push_back(-1);
   fixed_.push_back(facet >= 0);
   slide_.resize(P_.size(), 0);
-  if (facet >= 0) slide_[p_id] = std::uint8_t(facet_axes_[facet]);
+  vertex_facets_.resize(P_.size(), {{-1, -1}});
+  plane_facet_.resize(P_.size(), -1);
+  if (facet >= 0) {
+    slide_[p_id] = std::uint8_t(facet_axes_[facet]);
+    vertex_facets_[p_id] = {{facet, -1}};
+    if (geometry::dot(facet_dir_[facet], facet_dir_[facet]) > 0) plane_facet_[p_id] = facet;
+  }
   if (!replace(old, fresh, boundary)) {
     P_.pop_back();
     vtet_.pop_back();
     fixed_.pop_back();
     slide_.pop_back();
+    vertex_facets_.pop_back();
+    plane_facet_.pop_back();
     return false;
   }
   if (facet >= 0) {
