@@ -841,5 +841,37 @@ TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
   }
 }
 
+// The byte per vertex behind Subcomplex::on_p (issue 15) says what the
+// vertex's own record says, for every vertex, after every phase of a run.
+TEST(MesherSpeed, KeptOnPMarksAgreeWithTheVertexRecords) {
+  std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
+    std::size_t on = 0, free = 0;
+    auto check = [&] {
+      const auto& verts = m.vertices();
+      for (int v = 0; v < static_cast<int>(verts.size()); ++v) {
+        const bool expected = verts[v].on != mesher::On::free;
+        ASSERT_EQ(m.subcomplex().on_p(v), expected) << "vertex " << v;
+        ++(expected ? on : free);
+      }
+      EXPECT_FALSE(m.subcomplex().on_p(kInfinite));
+    };
+    m.initialize();
+    check();
+    m.conform();
+    check();
+    m.refine();
+    check();
+    m.pump();
+    check();
+    EXPECT_GT(on, 0u);
+    EXPECT_GT(free, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace wqmesh

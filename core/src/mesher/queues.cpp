@@ -33,28 +33,32 @@ void Queues::fill(bool tets) {
 
 void Queues::enqueue_around(int v) {
   if (meter_.phase() == Phase::initialize) return;
-  // The star of v gives both its new cells and its neighbours.
-  std::vector<Tet> cells;
-  std::vector<CellRef> refs;
+  // The star of v gives both its new cells and its neighbours. (The buffers
+  // are members, kept from call to call: no allocation per insertion.)
+  std::vector<Tet>& cells = star_;
+  std::vector<CellRef>& refs = star_refs_;
   tri_.incident_cells(v, cells, &refs);
   // The upkeep always completes (a stop is seen by the caller's loop).
   meter_.poll(cells.size());
   // The ring (v and its neighbours), sorted, and marked in ring_mark_ with
   // a stamp of this call: in_ring is O(1) (a binary search of the ring was a
   // tenth of a run; issue 15).
+  // The marks also drop the repeats (each vertex is in several cells)
+  // before the sort.
   std::vector<int>& ring = ring_;
   ring.clear();
-  for (const Tet& c : cells)
-    for (int x : c)
-      if (x != kInfinite) ring.push_back(x);
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   if (ring_mark_.size() < std::size_t(tri_.number_of_vertices())) ring_mark_.resize(tri_.number_of_vertices(), 0);
   if (++stamp_ == 0) {  // wrapped: no old stamp may match
     std::fill(ring_mark_.begin(), ring_mark_.end(), 0);
     stamp_ = 1;
   }
-  for (int x : ring) ring_mark_[x] = stamp_;
+  for (const Tet& c : cells)
+    for (int x : c)
+      if (x != kInfinite && ring_mark_[x] != stamp_) {
+        ring_mark_[x] = stamp_;
+        ring.push_back(x);
+      }
+  std::sort(ring.begin(), ring.end());
   auto in_ring = [&](int x) { return ring_mark_[x] == stamp_; };
   // Subsegments: the new ones, and those the new vertex may encroach. The
   // key names both ends (edge_key), so the test needs no look-up. Every
@@ -69,9 +73,10 @@ void Queues::enqueue_around(int v) {
   // vertex may encroach or remove from Del V).
   // `seen`: the triangles considered so far, sorted (a few dozen: a sorted
   // vector costs less than a hash set's node per entry; issue 15).
-  std::vector<Tri> seen;
-  std::vector<int> fs;
-  std::vector<Tri> around;
+  std::vector<Tri>& seen = seen_;
+  std::vector<int>& fs = fs_;
+  std::vector<Tri>& around = around_;
+  seen.clear();
   // The subfacets at v are new (in its facets' planar triangulations) and
   // may be missing from Del V whatever their vertices. The cheap tests come
   // first: lies_in_facet runs once per candidate.
@@ -87,7 +92,7 @@ void Queues::enqueue_around(int v) {
   // star on every insertion nearby would make refinement quadratic, so its
   // triangles are then found from its edges to the other ring vertices.
   constexpr std::size_t kFan = 48;
-  std::vector<Tri> pair;
+  std::vector<Tri>& pair = pair_;
   // The ring vertices on P with their facets, in the ring's order, and which
   // ring vertices each facet holds (only the vertices whose facets_of holds f
   // are in f's planar triangulation).

@@ -77,6 +77,11 @@ class Queues {
   /// Queues subsegment s under its key k, noting when (Subsegment::queued_at).
   void queue(std::uint64_t k, const Subsegment& s);
   std::vector<int> ring_;
+  // enqueue_around's other buffers, kept from call to call (issue 15).
+  std::vector<Tet> star_;
+  std::vector<CellRef> star_refs_;
+  std::vector<Tri> seen_, around_, pair_;
+  std::vector<int> fs_;
   std::vector<std::pair<int, int>> ring_facets_;      ///< (ring vertex, facet)
   std::vector<std::pair<int, int>> ring_facet_list_;  ///< (facet, ring vertex), sorted
   std::vector<unsigned> ring_mark_;

@@ -136,6 +136,7 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
   if (frozen_) throw std::logic_error("internal error: a vertex was inserted after the subcomplex's freeze()");
   new_segments.clear();
   vertex_segs_.emplace_back();
+  on_p_.push_back(verts_[id].on != On::free);
   if (ins.has_segment) {
     const auto it = segs_.find(ins.split_segment);
     if (it != segs_.end()) {

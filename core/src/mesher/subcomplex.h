@@ -166,7 +166,12 @@ class Subcomplex {
   /// puts a vertex into the facets facets_of gives it, none for a free one)
   /// and end subsegments, so a triangle or edge with another vertex is no
   /// subfacet or subsegment, without a look-up.
-  bool on_p(int v) const { return v >= 0 && verts_[v].on != On::free; }
+  /// Read from a byte per vertex kept beside V (issue 15: the MVertex list is
+  /// 32 bytes a vertex, and this test runs on every vertex of every conflict
+  /// zone and ring: a cache miss each).
+  bool on_p(int v) const {
+    return static_cast<std::size_t>(v) < on_p_.size() ? on_p_[v] != 0 : v >= 0 && verts_[v].on != On::free;
+  }
   /// The subfacets of facet f at vertex v.
   void subfacets_at(int f, int v, std::vector<Tri>& out) const;
   bool is_subfacet(int f, const Tri& t) const;
@@ -207,6 +212,7 @@ class Subcomplex {
   const ProtectingBalls& balls_;
   std::unordered_map<std::uint64_t, Subsegment> segs_;
   std::vector<std::vector<std::uint64_t>> vertex_segs_;
+  std::vector<char> on_p_;                               ///< by vertex id: verts_[id].on != On::free (on_p)
   std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
   std::vector<PlanarDelaunay> facet_dt_;
   bool frozen_ = false;
