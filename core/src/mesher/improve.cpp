@@ -793,7 +793,7 @@ double Improver::dihedral(int t) const {
   return dih_[t];
 }
 
-void Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes) {
+double Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes) {
   const Point3 p = P_[p_id];
   double lmin = HUGE_VAL, current = HUGE_VAL;
   for (const Tet& T : fresh) {
@@ -801,15 +801,15 @@ void Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axe
     for (int k = 0; k < 3; ++k) lmin = std::min(lmin, geometry::dist2(P_[T[k]], p));
   }
   lmin = std::sqrt(lmin);
-  if (lmin > 0)
-    ascend(
-        p_id, fresh, current, lmin,
-        [&] {
-          for (const Tet& T : fresh)
-            if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
-          return true;
-        },
-        axes);
+  if (!(lmin > 0)) return current;
+  return ascend(
+      p_id, fresh, current, lmin,
+      [&] {
+        for (const Tet& T : fresh)
+          if (!positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])) return false;
+        return true;
+      },
+      axes);
 }
 
 bool Improver::smooth(int v) {
@@ -955,10 +955,10 @@ bool Improver::insert(int t) {
       // Beyond Stellar's rule as written: the new point is first placed by
       // the smoothing ascent on its own star (the cavity stays), then the
       // insertion is judged.
-      ascend_new_point(p_id, fresh);
+      const double placed = ascend_new_point(p_id, fresh);
       vtet_.push_back(-1);
       double w;
-      if (accept(cav, fresh, w) && w > best) {
+      if (placed > best && accept(cav, fresh, w) && w > best) {
         best = w;
         best_old = cav;
         best_fresh = fresh;

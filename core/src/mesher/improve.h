@@ -283,8 +283,11 @@ class Improver {
   /// lmin its shortest edge, keeping every tet of fresh positive (EPICK's
   /// exact orientation); only the coordinates of `axes` change (bit i: axis
   /// i). Beyond the paper: the insertions (insert(), insert_boundary())
-  /// place their point so before they are judged.
-  void ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes = 7);
+  /// place their point so before they are judged. Returns fresh's worst
+  /// min-sine at the point placed (what accept() computes for it, bit for
+  /// bit: the callers skip the guards of a candidate that cannot beat the
+  /// best one so far).
+  double ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes = 7);
 
   MeshResult& r_;
   double rho_, max_size_;

@@ -310,10 +310,10 @@ bool Improver::insert_boundary(int t) {
         // The new point is first slid along the facet's axes by the smoothing
         // ascent on its own star (the cavity stays), then the insertion is judged.
         P_.push_back(p);
-        ascend_new_point(p_id, fresh, axes);
+        const double placed = ascend_new_point(p_id, fresh, axes);
         vtet_.push_back(-1);
         double w;
-        if (accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {
+        if (placed > best && accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {
           best = w;
           best_old = cav;
           best_fresh = fresh;
