@@ -5,10 +5,10 @@
 //   native: user + system CPU of the command line's process (single-threaded;
 //           read with /usr/bin/time) and its stats.time_s;
 //   wasm:   the CPU of the main thread during the module's mesh() call (from
-//           /proc/self/task/PID/stat, 10 ms ticks): about the wall time of an
-//           idle machine, where V8's background compiler threads run beside it;
-//           the CPU of all threads of the process during the call (with those
-//           compiler threads), and the run's stats.time_s (wall, loaded).
+//           /proc/self/task/PID/stat, 10 ms ticks); the CPU of all threads
+//           of the process during the call (with V8's background compiler
+//           threads: on a quiet machine the wall time was this one, not the
+//           main thread's), and the run's stats.time_s (wall).
 // A package is a folder holding wqmesh.mjs (e.g. wasm/ of a checkout).
 // Usage: node examples/node/wasm_cpu.mjs [--runs N] [--cli BIN] [--pkg DIR]... MODEL...
 //   defaults: --runs 3, --cli build/native/bin/wqmesh, --pkg wasm
