@@ -73,7 +73,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.key("options").begin_object();
   j.field("rho0", options.rho0).field("theta_deg", options.theta_deg).field("pump", options.pump);
   j.field("box_margin", options.box_margin).field("max_vertices", options.max_vertices);
-  j.field("max_size", options.max_size).field("improve", options.improve);
+  j.field("max_size", options.max_size).field("improve", options.improve).field("polish", options.polish);
   j.end_object();
   // Beyond the paper: the improvement phase (MeshOptions::improve).
   const ImproveStats& im = r.improve;
@@ -81,7 +81,7 @@ std::string mesh_stats_json(const PLC& plc, const MeshResult& r, const MeshOptio
   j.field("ran", im.ran).field("passes", im.passes);
   j.field("flips23", im.flips23).field("flips32", im.flips32).field("flips44", im.flips44);
   j.field("flips22", im.flips22).field("edge_removals", im.edge_removals);
-  j.field("multi_face_removals", im.multi_face_removals);
+  j.field("multi_face_removals", im.multi_face_removals).field("polished", im.polished);
   j.field("smoothed", im.smoothed).field("inserted", im.inserted).field("contractions", im.contractions);
   j.field("slid", im.slid).field("inserted_on_boundary", im.inserted_on_boundary);
   j.field("min_dihedral_before", im.min_dihedral_before).field("min_dihedral_after", im.min_dihedral_after);

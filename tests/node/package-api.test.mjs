@@ -75,6 +75,28 @@ test('the exported option table is the module\'s and gives the defaults', async 
   assert.equal(s.options.box_margin, defaultOptions.boxMargin);
 });
 
+test('polish: true runs the polish (beyond the paper) and keeps the mesh valid; a non-boolean is refused', async () => {
+  const slit = example('slit.off');
+  const plain = await mesh(slit);
+  const polished = await mesh(slit, { polish: true });
+  assert.equal(defaultOptions.polish, false);
+  assert.equal(plain.stats.options.polish, false);
+  assert.equal(plain.stats.improve.polished, 0);
+  assert.equal(polished.stats.options.polish, true);
+  assert.ok(polished.stats.improve.polished > 0, 'the polish changed something on slit.off');
+  // The polish only accepts changes whose new tets beat its floor, and never adds tets.
+  assert.ok(polished.stats.min_dihedral_deg >= plain.stats.min_dihedral_deg,
+            `${polished.stats.min_dihedral_deg} >= ${plain.stats.min_dihedral_deg}`);
+  assert.ok(polished.stats.tets <= plain.stats.tets);
+  assert.equal(polished.stats.violations, plain.stats.violations);
+  const a = signedVolume(plain.vertices, plain.tets, 'slit');
+  const b = signedVolume(polished.vertices, polished.tets, 'slit, polished');
+  assert.ok(Math.abs(a - b) <= 1e-9 * Math.abs(a), `the same volume: ${a} ${b}`);
+  for (const bad of [1, 'yes'])
+    await assert.rejects(mesh(slit, { polish: bad }),
+                         (e) => e.code === 'options' && /polish must be true or false/.test(e.message), String(bad));
+});
+
 test('the native command line and the module accept and refuse the same option values', { skip: skipNative }, async () => {
   const box = join(root, 'examples/models/box.off');
   const bytes = example('box.off');

@@ -1090,7 +1090,7 @@ bool Improver::run() {
     st_.passes = pass + 1;
     if (changed == 0) break;
   }
-  polish();  // improve_polish.cpp (kPolishWork: off by default)
+  st_.polished = polish(polish_work_);  // improve_polish.cpp (off unless MeshOptions::polish)
   return !cancelled_;
 }
 
@@ -1170,6 +1170,7 @@ bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   {  // the Improver's arrays are freed before the classes are made
     Improver im(r, opt.rho0, opt.max_size, keep_going);
     im.set_classes(&balls, opt.theta_deg);
+    if (opt.polish) im.set_polish_work(HUGE_VAL);  // MeshOptions::polish: unbounded
     done = im.run();
     im.finish();
   }

@@ -575,11 +575,15 @@ class Improver {
   // rise of D by kPolishRiseDeg.
  public:
   /// The rounds, trying at most work_per_tet operations per live tet
-  /// (called by run() after the passes with kPolishWork); returns the
+  /// (run() calls it after the passes with set_polish_work()'s value); returns the
   /// changes made.
   std::size_t polish(double work_per_tet = kPolishWork);
+  /// What run() passes to polish() (MeshOptions::polish: HUGE_VAL, every
+  /// round the stopping rules allow; default kPolishWork, off).
+  void set_polish_work(double work_per_tet) { polish_work_ = work_per_tet; }
 
  private:
+  double polish_work_ = kPolishWork;  ///< set_polish_work()
   /// The smallest dihedral angle (degrees) of the live tets (180: none).
   double smallest_dihedral_deg() const;
   /// Whether new tet T passes polish's floor (admissible() asks, while
