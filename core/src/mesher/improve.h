@@ -74,6 +74,12 @@ constexpr int kMaxCavity = 48;
 /// tets below sin(kContractBelowDeg) (10: on wedge and wedge-1, 696 tets
 /// under 5 degrees left where 5 leaves 708, 3 leaves 757, 20 leaves 728).
 constexpr double kContractBelowDeg = 10;
+/// A work bound (beyond the paper and Klingner-Shewchuk): a vertex whose
+/// star holds more than kContractMaxStar tets is not contracted. Each
+/// candidate target costs a sort of the whole star, so a vertex with a star of
+/// n tets costs O(n^2 log n); mpi.off's default run spent more than 30 CPU
+/// minutes in contract_pass without it. Stars of sound meshes hold 10-100 tets.
+constexpr std::size_t kContractMaxStar = 256;
 /// The relaxed rule counts the tets below sin(kContractCountDeg) (issue 14's
 /// measure: tets under 5 degrees).
 constexpr double kContractCountDeg = 5;

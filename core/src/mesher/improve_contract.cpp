@@ -95,7 +95,7 @@ bool Improver::removal(int v, std::vector<int>& S, std::vector<int>& bt, std::ve
   if (v < int(r_.input_vertex.size()) && r_.input_vertex[v] >= 0) return false;  // input vertices stay
   if (on_vertex_ball(v)) return false;
   star(v, S);
-  if (S.empty()) return false;
+  if (S.empty() || S.size() > kContractMaxStar) return false;  // the work bound (improve.h)
   // v's boundary triangles: the faces at v of its star's tets that are one.
   const std::vector<int>& label = r_.mesh.boundary_facet;
   for (int t : S)
