@@ -34,7 +34,11 @@ const nodeWorkerThreads = 'node:worker_threads';
 async function startWorker() {
   if (isNode) {
     const { Worker } = await import(nodeWorkerThreads);
-    const w = new Worker(new URL('./worker.mjs', import.meta.url));
+    // execArgv: [] rather than the caller's: a worker inherits the process's
+    // flags by default, and some are refused in a worker script (e.g.
+    // `node --input-type=module -e ...`: "--input-type can only be used with
+    // string input"). The worker needs no flags of its own.
+    const w = new Worker(new URL('./worker.mjs', import.meta.url), { execArgv: [] });
     return {
       post: (m) => w.postMessage(m),
       onMessage: (f) => w.on('message', f),

@@ -8,6 +8,8 @@
 // - every broken model of ../shared/models rejected with the native kind as
 //   its `code`; empty, garbage, a 0-byte file, a path string, null, a
 //   misspelt option: each a clear error;
+// - a caller run as `node --input-type=module -e ...` (flags a worker
+//   refuses) gets the same valid mesh as this process;
 // - abort in the middle of a run, in each phase (PUMP included): an AbortError within
 //   100 ms of the abort, and the next call succeeds; progress never goes
 //   down and the phases come in order;
@@ -427,4 +429,23 @@ test('calls at the same time run in workers of their own and all succeed', async
     assert.equal(r.stats.conforming, true, models[k]);
     signedVolume(r.vertices, r.tets, models[k]);
   }
+});
+
+test('a caller run as node --input-type=module -e gets a valid mesh from the worker', async () => {
+  // The worker must not inherit flags such as --input-type, which Node refuses
+  // in a worker script (wasm/index.mjs starts it with execArgv: []).
+  const entry = new URL('../../wasm/index.mjs', import.meta.url).href;
+  const model = join(root, 'examples/models/spike.off');
+  const script = `import { mesh } from ${JSON.stringify(entry)};
+import { readFileSync } from 'node:fs';
+const r = await mesh(readFileSync(${JSON.stringify(model)}));
+process.stdout.write(JSON.stringify({ conforming: r.stats.conforming, vertices: [...r.vertices], tets: [...r.tets] }));`;
+  const child = spawnSync(process.execPath, ['--input-type=module', '-e', script], { encoding: 'utf8', maxBuffer: 1 << 26 });
+  assert.equal(child.status, 0, `node --input-type=module -e: exit ${child.status}: ${child.stderr}`);
+  const got = JSON.parse(child.stdout);
+  assert.equal(got.conforming, true);
+  const volume = signedVolume(got.vertices, got.tets, 'spike.off through node -e');
+  const here = await mesh(example('spike.off'));
+  assert.equal(got.tets.length, here.tets.length, 'the same mesh as in this process');
+  assert.ok(Math.abs(volume - signedVolume(here.vertices, here.tets, 'spike.off')) <= 1e-9 * Math.abs(volume));
 });
