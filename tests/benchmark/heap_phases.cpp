@@ -13,16 +13,30 @@
 // PUMP (it makes no progress call) and "improve" the classes at the end.
 // Prints one line per phase (peak MB, bytes per output tet), the whole run's
 // peak and where it was, and the output tets.
+// The resident memory too (issue 15: the peak RSS is the goal's measure): a
+// second thread reads /proc/self/statm every millisecond and keeps the
+// largest RSS seen, with the live heap, the phase and malloc's own counts
+// (mallinfo2: the main arena's bytes from the system, those free in it, the
+// mmapped blocks) at that moment; each phase's line gives the process's
+// high-water mark (VmHWM) at its end, so the phase that set the peak RSS is
+// the one whose VmHWM is the run's. After the run the .mesh text and the
+// statistics are made as `wqmesh mesh -o M.mesh --stats` makes them (phase
+// "output"), since they belong to that command's peak.
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include <fcntl.h>
 #include <malloc.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <new>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <wqmesh/wqmesh.h>
@@ -44,6 +58,60 @@ void uncounted(void* p) {
   if (!p) return;
   g_live -= static_cast<long long>(malloc_usable_size(p));
   std::free(p);
+}
+
+/// The resident set of the process in bytes (/proc/self/statm's second
+/// field), read without allocating; 0 when it cannot be read.
+long long resident_bytes() {
+  const int fd = ::open("/proc/self/statm", O_RDONLY);
+  if (fd < 0) return 0;
+  char text[128];
+  const ssize_t n = ::read(fd, text, sizeof text - 1);
+  ::close(fd);
+  if (n <= 0) return 0;
+  text[n] = 0;
+  const char* q = text;
+  while (*q && *q != ' ') ++q;
+  return std::atoll(q) * ::sysconf(_SC_PAGESIZE);
+}
+
+/// The process's peak resident set so far (VmHWM of /proc/self/status), in
+/// bytes; 0 when it cannot be read.
+long long high_water_bytes() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.compare(0, 6, "VmHWM:") == 0) return std::atoll(line.c_str() + 6) * 1024;
+  return 0;
+}
+
+std::atomic<int> g_phase{-1};
+std::atomic<bool> g_sampling{true};
+/// What the sampler saw at the largest RSS.
+struct RssPeak {
+  long long rss = 0, live = 0, arena = 0, free_in_arena = 0, mmapped = 0;
+  int phase = -1;
+};
+
+void sample(RssPeak* peak) {
+  while (g_sampling) {
+    const long long rss = resident_bytes();
+    if (rss > peak->rss) {
+      peak->rss = rss;
+      peak->live = g_live.load();
+      peak->phase = g_phase.load();
+      // mallinfo2 walks the free lists: only when the peak grew by 1 MB.
+      static long long last = 0;
+      if (rss > last + (1 << 20)) {
+        last = rss;
+        const struct mallinfo2 m = mallinfo2();
+        peak->arena = static_cast<long long>(m.arena);
+        peak->free_in_arena = static_cast<long long>(m.fordblks);
+        peak->mmapped = static_cast<long long>(m.hblkhd);
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 }  // namespace
@@ -93,24 +161,39 @@ int main(int argc, char** argv) {
     }
     struct Span {
       std::string phase;
-      long long start, peak;
+      long long start, peak, hwm;
     };
     std::vector<Span> spans;
     spans.reserve(16);
     const long long base = g_live.load();
+    RssPeak rss;
+    std::thread sampler(sample, &rss);
     const auto close = [&] {
-      if (!spans.empty()) spans.back().peak = g_peak.load();
+      if (!spans.empty()) spans.back().peak = g_peak.load(), spans.back().hwm = high_water_bytes();
     };
     const wqmesh::Result result = wqmesh::mesh(in, options, [&](const wqmesh::MeshProgress& p) {
       const std::string name = wqmesh::to_string(p.phase);
       if (spans.empty() || spans.back().phase != name) {
         close();
         g_peak = g_live.load();
-        spans.push_back({name, g_live.load(), 0});
+        spans.push_back({name, g_live.load(), 0, 0});
+        g_phase = static_cast<int>(spans.size()) - 1;
       }
       return true;
     });
     close();
+    // What `wqmesh mesh -o M.mesh --stats S` makes after the run.
+    g_peak = g_live.load();
+    spans.push_back({"output", g_live.load(), 0, 0});
+    g_phase = static_cast<int>(spans.size()) - 1;
+    if (result.conforming()) {
+      std::ofstream sink("/dev/null", std::ios::binary);
+      result.write(sink, wqmesh::OutputFormat::medit);
+    }
+    const std::string stats = result.stats_json(0);
+    close();
+    g_sampling = false;
+    sampler.join();
     const std::size_t tets = result.mesh().tets.size();
     const long long after = g_live.load();
     long long top = 0;
@@ -122,10 +205,15 @@ int main(int argc, char** argv) {
     std::printf("model %s: %zu tets, %zu vertices; heap before the run %.1f MB\n", argv[1], tets,
                 result.mesh().vertices.size(), mb(base));
     for (const Span& s : spans)
-      std::printf("  %-10s at its start %8.1f MB %6.0f B/tet   peak %8.1f MB %6.0f B/tet\n", s.phase.c_str(),
-                  mb(s.start - base), per(s.start), mb(s.peak - base), per(s.peak));
+      std::printf("  %-10s at its start %8.1f MB %6.0f B/tet   peak %8.1f MB %6.0f B/tet   VmHWM at its end %8.1f MB\n",
+                  s.phase.c_str(), mb(s.start - base), per(s.start), mb(s.peak - base), per(s.peak), mb(s.hwm));
     std::printf("  result held after the run %.1f MB %.0f B/tet\n", mb(after - base), per(after));
     std::printf("peak %.1f MB %.0f B/tet in %s\n", mb(top - base), per(top), where.c_str());
+    std::printf("peak RSS (VmHWM) %.1f MB %.0f B/tet\n", mb(spans.back().hwm), per(spans.back().hwm + base));
+    std::printf(
+        "largest RSS sampled %.1f MB in %s: live heap %.1f MB; malloc: arena %.1f MB (%.1f free), mmapped %.1f MB\n",
+        mb(rss.rss), rss.phase >= 0 ? spans[rss.phase].phase.c_str() : "?", mb(rss.live - base), mb(rss.arena),
+        mb(rss.free_in_arena), mb(rss.mmapped));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -47,6 +47,20 @@ bool heap_is_measurable() {
   return block[12345] == 1 && during >= before + (8u << 20);
 }
 
+// One example model, loaded, with its domain, default options and no
+// progress callback: the set-up of each test below (built in place, never
+// copied: the domain refers to the loaded input).
+struct LoadedModel {
+  explicit LoadedModel(const std::string& name)
+      : in(load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name)), dom(in.plc, in.analysis) {}
+  LoadedModel(const LoadedModel&) = delete;
+  LoadedModel& operator=(const LoadedModel&) = delete;
+  const Input in;
+  const mesher::Domain dom;
+  const MeshOptions o;
+  const ProgressCallback none;
+};
+
 // INITIALIZE, CONFORM and REFINE (section 4.3) on m.
 void refine(mesher::Mesher& m) {
   m.initialize();
@@ -71,10 +85,10 @@ void expect_same_mesh(const MeshResult& r, const MeshResult& expected) {
 TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
   for (const std::string name : {"spike.off", "slit.off", "edge_facet.off"}) {
     SCOPED_TRACE(name);
-    const Input in = load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
-    const mesher::Domain dom(in.plc, in.analysis);
-    MeshOptions o;
-    ProgressCallback none;
+    const LoadedModel s(name);
+    const mesher::Domain& dom = s.dom;
+    const MeshOptions& o = s.o;
+    const ProgressCallback& none = s.none;
     auto run_phases = [&](mesher::Mesher& m) {
       refine(m);
       m.count_qmesh_slivers();
@@ -127,10 +141,10 @@ TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
 TEST(Memory, FrozenSubcomplexGivesTheSameRunAfterRefine) {
   for (const std::string name : {"spike.off", "slit.off", "edge_facet.off"}) {
     SCOPED_TRACE(name);
-    const Input in = load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
-    const mesher::Domain dom(in.plc, in.analysis);
-    MeshOptions o;
-    ProgressCallback none;
+    const LoadedModel s(name);
+    const mesher::Domain& dom = s.dom;
+    const MeshOptions& o = s.o;
+    const ProgressCallback& none = s.none;
     mesher::Mesher live(dom, o, none), frozen(dom, o, none);
     refine(live);
     refine(frozen);
@@ -185,17 +199,13 @@ Tet canonical_order(const Tet& t) {
 // canonical vertex order (compared by coordinates), with one boundary
 // triangle per face between an inside and an outside cell.
 TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
-  std::vector<std::string> files;
-  for (const char* name : {"spike.off", "slit.off", "edge_facet.off", "thin_wedge.off", "bracket.off"})
-    files.push_back(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
   int in_place = 0;
-  for (const std::string& file : files) {
-    SCOPED_TRACE(file);
-    const Input in = load(file);
-    const mesher::Domain dom(in.plc, in.analysis);
-    MeshOptions o;
-    ProgressCallback none;
-    mesher::Mesher m(dom, o, none);
+  for (const std::string name : {"spike.off", "slit.off", "edge_facet.off", "thin_wedge.off", "bracket.off"}) {
+    SCOPED_TRACE(name);
+    const LoadedModel s(name);
+    const mesher::Domain& dom = s.dom;
+    const MeshOptions& o = s.o;
+    mesher::Mesher m(dom, o, s.none);
     refine(m);
     for (int stage = 0; stage < 2; ++stage) {
       SCOPED_TRACE(stage ? "after PUMP" : "after REFINE");
