@@ -484,7 +484,7 @@ TEST(ImproveBoundary, ASegmentVertexSlidesAlongASlantedInputEdgeInPolish) {
   EXPECT_GT(d[0], 0);
   EXPECT_EQ(d[1], 2 * d[0]);
   EXPECT_FALSE(im.smooth(s));
-  EXPECT_GT(im.polish(HUGE_VAL), 0u);
+  EXPECT_GT(im.polish(), 0u);
   im.finish();
   ASSERT_EQ(c.r.mesh.vertices.size(), 5u) << "s was slid, not contracted";
   const Point3& v = c.r.mesh.vertices[s];
@@ -531,7 +531,7 @@ TEST(ImproveBoundary, AFacetVertexSlidesAcrossAVerticalSlantedFacetInPolish) {
   const Point3 d = im.plane_direction(s);
   EXPECT_EQ(d[1], 2 * d[0]);
   EXPECT_EQ(d[2], 0);
-  EXPECT_GT(im.polish(HUGE_VAL), 0u);
+  EXPECT_GT(im.polish(), 0u);
   im.finish();
   ASSERT_EQ(p.r.mesh.vertices.size(), 6u);
   const Point3& v = p.r.mesh.vertices[s];
@@ -1224,7 +1224,7 @@ TEST(Improve, PolishNeverLowersTheSmallestAngleNorAddsTets) {
       return v;
     };
     Improver im(r, 2.2, 0);
-    changes += im.polish(HUGE_VAL);
+    changes += im.polish();
     im.finish();
     EXPECT_GE(smallest(r.mesh), smallest(plain));
     EXPECT_LE(r.mesh.tets.size(), plain.tets.size());
@@ -1257,6 +1257,35 @@ TEST(Improve, PolishNeverLowersTheSmallestAngleNorAddsTets) {
   EXPECT_GT(changes, 0u);
 }
 
+// The polish decides on cosines (improve_polish.cpp: no libm call, so that
+// native and wasm agree): largest_cosine() is the cosine of the tet's
+// smallest dihedral angle as tet_min_dihedral_deg measures it, to rounding,
+// on every tet of slit.off's mesh as PUMP leaves it, and it orders the tets
+// as that angle does wherever the angles differ by more than rounding.
+TEST(Improve, PolishLargestCosineIsTheCosineOfTheSmallestDihedralAngle) {
+  const std::string f = std::string(WQMESH_EXAMPLE_MODELS) + "/slit.off";
+  const invariants::Input in = invariants::load(f);
+  MeshOptions off;
+  off.improve = false;
+  MeshResult r = mesh_polyhedron(in.plc, in.analysis, off);
+  const TetMesh m = r.mesh;
+  ASSERT_GT(m.tets.size(), 100u);
+  Improver im(r, 2.2, 0);
+  std::vector<std::pair<double, double>> angle_cos;
+  for (const auto& t : m.tets) {
+    const double d = tet_min_dihedral_deg(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+    const double c = im.largest_cosine(t);
+    EXPECT_NEAR(c, std::cos(d * geometry::kPi / 180), 1e-12) << d;
+    angle_cos.push_back({d, c});
+  }
+  std::sort(angle_cos.begin(), angle_cos.end());
+  for (std::size_t i = 1; i < angle_cos.size(); ++i)
+    if (angle_cos[i].first > angle_cos[i - 1].first + 1e-9) EXPECT_LT(angle_cos[i].second, angle_cos[i - 1].second);
+  // A flat tet (a degenerate face) counts as the angle 0.
+  const Tet flat{{m.tets[0][0], m.tets[0][0], m.tets[0][1], m.tets[0][2]}};
+  EXPECT_EQ(im.largest_cosine(flat), 1.0);
+}
+
 // MeshOptions::polish (beyond the paper; off by default): run() polishes
 // after the passes. On slit.off (whose smallest angle the polish raises),
 // the polished mesh meets every invariant (conformity, orientation, volume),
@@ -1267,6 +1296,7 @@ TEST(Improve, PolishOptionRaisesSlitsSmallestAngleAndKeepsEveryInvariant) {
   const std::string f = std::string(WQMESH_EXAMPLE_MODELS) + "/slit.off";
   const invariants::Input in = invariants::load(f);
   const MeshResult plain = mesh_polyhedron(in.plc, in.analysis);
+  EXPECT_FALSE(MeshOptions().polish) << "the polish is off by default (improve.h: its time)";
   MeshOptions on;
   on.polish = true;
   const MeshResult r = mesh_polyhedron(in.plc, in.analysis, on);

@@ -422,7 +422,7 @@ bool Improver::beats(double worst_new, double worst_old) const {
 }
 
 bool Improver::admissible(const Tet& T, double size_cap) const {
-  if (polish_floor_deg_ > 0 && !polish_admits(T)) return false;  // polish()'s floor (improve_polish.cpp)
+  if (polishing_ && !polish_admits(T)) return false;  // polish()'s floor (improve_polish.cpp)
   if (size_cap <= 0) return true;
   double rl, R;
   radius_edge(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], rl, R);
@@ -432,7 +432,7 @@ bool Improver::admissible(const Tet& T, double size_cap) const {
 bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new,
                       double floor) const {
   double worst_old = HUGE_VAL, size_cap = max_size_;
-  if (polish_floor_deg_ > 0 && !polish_room(old.size(), fresh.size())) return false;  // improve_polish.cpp
+  if (polishing_ && !polish_room(old.size(), fresh.size())) return false;  // improve_polish.cpp
   for (int t : old) worst_old = std::min(worst_old, q_[t]);
   if (!std::isnan(floor)) worst_old = floor;
   worst_new = HUGE_VAL;
@@ -1090,7 +1090,7 @@ bool Improver::run() {
     st_.passes = pass + 1;
     if (changed == 0) break;
   }
-  st_.polished = polish(polish_work_);  // improve_polish.cpp (off unless MeshOptions::polish)
+  st_.polished = polish_on_ ? polish() : 0;  // improve_polish.cpp (off unless MeshOptions::polish)
   return !cancelled_;
 }
 
@@ -1170,7 +1170,7 @@ bool improve_phase(MeshResult& r, const ProtectingBalls& balls, const MeshOption
   {  // the Improver's arrays are freed before the classes are made
     Improver im(r, opt.rho0, opt.max_size, keep_going);
     im.set_classes(&balls, opt.theta_deg);
-    if (opt.polish) im.set_polish_work(HUGE_VAL);  // MeshOptions::polish: unbounded
+    im.set_polish(opt.polish);  // MeshOptions::polish
     done = im.run();
     im.finish();
   }

@@ -103,20 +103,15 @@ constexpr int kPolishRounds = 30;
 constexpr int kPolishStalls = 2;
 constexpr double kPolishRiseDeg = 0.01;
 constexpr double kPolishFloorDeg = 5;
-/// What run()'s polish() may try, in operations (flips of a tet, smoothing
-/// or contraction of a vertex) per live tet; 0: none, the passes' mesh is
-/// left as it is. 0 because of issue 14's time goal (the phase under REFINE +
-/// PUMP's time): the polish's operations cost about as much per tet as
-/// REFINE, and on the small models the figures above need 5 to 12 per tet.
-/// Unbounded (HUGE_VAL), on the 16 models of BENCHMARKS.md, every goal but
-/// that one is as good or better (smallest angle: slit 18.52 -> 29.00,
-/// edge_facet 20.21 -> 29.34, 20mm cube 15.43 -> 18.78, extrusion 11.82 ->
-/// 14.04, slit-1 11.56 -> 16.98, box 35.26 -> 45; tets fewer or equal, tets
-/// under 5 degrees and violations equal), but the phase's time over REFINE
-/// + PUMP's rises above 1 on slit (0.76 -> 5.98), edge_facet (0.61 -> 4.94)
-/// and extrusion (0.68 -> 2.95); 0.5 per tet already gives 1.18 on
-/// edge_facet.
-constexpr double kPolishWork = 0;
+/// The polish is off by default (MeshOptions::polish = false) because of
+/// issue 14's time goal (the phase under REFINE + PUMP's time): on the small
+/// models it costs 3 to 12 times REFINE + PUMP (slit: 27 rounds, about 3,900
+/// operations tried and 1,700 made on 279 tets; BENCHMARKS.md, "The polish's
+/// work"). On, on the 16 models of BENCHMARKS.md, every other goal is as good
+/// or better (smallest angle: slit 18.52 -> 29.00, edge_facet 20.21 -> 29.34,
+/// 20mm cube 15.43 -> 18.78, extrusion 11.82 -> 14.04, slit-1 11.56 -> 16.98,
+/// box 35.26 -> 45; tets fewer or equal, tets under 5 degrees and violations
+/// equal).
 
 /// The smallest sine of the six dihedral angles of tet abcd (each sine is
 /// 6 V l_ij / (|n_k| |n_l|), n_k the area normal of the face opposite k);
@@ -579,27 +574,36 @@ class Improver {
   // left, and the class guard keeps the violations from growing. A round
   // without a change ends it, as do kPolishStalls rounds in a row without a
   // rise of D by kPolishRiseDeg.
+  // Every decision compares cosines of dihedral angles made with +, -, *, /
+  // and sqrt only (largest_cosine()), no libm call: the native and the wasm
+  // builds give the same mesh.
  public:
-  /// The rounds, trying at most work_per_tet operations per live tet
-  /// (run() calls it after the passes with set_polish_work()'s value); returns the
-  /// changes made.
-  std::size_t polish(double work_per_tet = kPolishWork);
-  /// What run() passes to polish() (MeshOptions::polish: HUGE_VAL, every
-  /// round the stopping rules allow; default kPolishWork, off).
-  void set_polish_work(double work_per_tet) { polish_work_ = work_per_tet; }
+  /// The rounds, every one the stopping rules allow; returns the changes
+  /// made (run() calls it after the passes when set_polish(true)).
+  std::size_t polish();
+  /// Whether run() polishes (MeshOptions::polish; off by default).
+  void set_polish(bool on) { polish_on_ = on; }
+  /// The largest cosine of T's six dihedral angles (the cosine of its
+  /// smallest; 1 when a face is degenerate).
+  double largest_cosine(const Tet& T) const;
 
  private:
-  double polish_work_ = kPolishWork;  ///< set_polish_work()
-  /// The smallest dihedral angle (degrees) of the live tets (180: none).
-  double smallest_dihedral_deg() const;
+  bool polish_on_ = false;  ///< set_polish()
+  /// The largest cosine of the dihedral angles of the live tets (the cosine
+  /// of the mesh's smallest angle; -1: no tet).
+  double largest_mesh_cosine() const;
   /// Whether new tet T passes polish's floor (admissible() asks, while
-  /// polish_floor_deg_ > 0).
+  /// polishing_).
   bool polish_admits(const Tet& T) const;
   /// Whether replacing old_tets tets by new_tets keeps the live tets at
-  /// most polish_cap_ (accept() asks, while polish_floor_deg_ > 0).
+  /// most polish_cap_ (accept() asks, while polishing_).
   bool polish_room(std::size_t old_tets, std::size_t new_tets) const;
-  /// The floor in degrees and its sine; 0 outside a round of polish().
-  double polish_floor_deg_ = 0, polish_floor_sine_ = 0;
+  /// True inside a round of polish().
+  bool polishing_ = false;
+  /// The floor: a new tet's largest cosine must be below polish_floor_cos_;
+  /// polish_floor_sine_ is the floor angle's sine (a min-sine above it
+  /// admits the tet at once).
+  double polish_floor_cos_ = 1, polish_floor_sine_ = 0;
   std::size_t polish_cap_ = 0;  ///< the live tets when polish() began
 };
 

@@ -189,7 +189,7 @@ int Improver::movable_axes(int v) const {
   if (v < 0 || v >= int(fixed_.size())) return 0;
   if (!fixed_[v]) return 7;
   // The in-plane slide only in polish() (improve_polish.cpp), under its floor.
-  const bool plane = polish_floor_deg_ > 0 && v < int(plane_facet_.size()) && plane_facet_[v] >= 0;
+  const bool plane = polishing_ && v < int(plane_facet_.size()) && plane_facet_[v] >= 0;
   return slide_axes(v) | (plane ? kPlaneSlide : 0);
 }
 
