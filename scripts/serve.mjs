@@ -52,9 +52,12 @@ function send(res, status, text, headers) {
  * listens; `close()` resolves when it has stopped.
  */
 export async function serve({ root = resolve(dirname(fileURLToPath(import.meta.url)), '..'), port = 0,
-                              host = '127.0.0.1', csp = '', log = () => {} } = {}) {
+                              host = '127.0.0.1', csp = '', cacheControl = 'no-store', log = () => {} } = {}) {
   const base = resolve(root);
-  const common = { 'Cache-Control': 'no-store', 'X-Content-Type-Options': 'nosniff' };
+  // cacheControl: 'no-store' by default; a measurement of the browser's wasm
+  // code cache needs one that lets the HTTP cache keep the files
+  // (examples/node/wasm_browser.mjs: 'max-age=3600').
+  const common = { 'Cache-Control': cacheControl, 'X-Content-Type-Options': 'nosniff' };
   if (csp) common['Content-Security-Policy'] = csp;
   const server = createServer(async (req, res) => {
     if (req.method !== 'GET' && req.method !== 'HEAD') {

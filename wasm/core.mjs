@@ -1,6 +1,6 @@
 // wqmesh: what the package entry (index.mjs) and its worker (worker.mjs) share:
-// the error class, the input check and the calls into the loaded Embind
-// module (wqmesh.mjs, built from bindings.cpp). Options are checked by the
+// the error class, the input check, the loading of the wasm module and the
+// calls into the loaded Embind module (wqmesh.mjs, built from bindings.cpp). Options are checked by the
 // module itself, with the core's option table (core/src/options.cpp), the
 // one the native command line uses.
 // SPDX-License-Identifier: GPL-3.0-or-later
@@ -149,4 +149,61 @@ export function runWrite(module, result, format, bytes) {
     throw moduleError(r.error);
   }
   return r;
+}
+
+// ---- Loading the module --------------------------------------------------------
+
+// Node's fs by a computed name, so that bundlers for the browser leave it alone.
+const nodeFs = 'node:fs/promises';
+
+/**
+ * Compiles the wasm binary at `url` (wqmesh.wasm, the binary of wqmesh.mjs,
+ * beside it): in Node from the file; elsewhere with
+ * WebAssembly.compileStreaming when the server says application/wasm, which
+ * lets Chromium keep the optimized code in its code cache and reuse it on
+ * the next page load, as long as the HTTP cache may keep the file (no
+ * `Cache-Control: no-store`). Rejects when the file is missing or not wasm.
+ */
+export async function compileWasm(url) {
+  const at = new URL(url);
+  if (at.protocol === 'file:') {
+    const { readFile } = await import(nodeFs);
+    return WebAssembly.compile(await readFile(at));
+  }
+  const response = await fetch(at, { credentials: 'same-origin' });
+  if (!response.ok) throw new Error(`${at}: HTTP ${response.status}`);
+  if (typeof WebAssembly.compileStreaming === 'function' && /^application\/wasm\b/.test(response.headers.get('Content-Type') ?? ''))
+    return WebAssembly.compileStreaming(response);
+  return WebAssembly.compile(await response.arrayBuffer());
+}
+
+/**
+ * Instantiates the Emscripten factory (wqmesh.mjs's default export) on the
+ * compiled module `wasm`, so that every instance of one package (the calling
+ * thread's and each worker's) runs the same compiled code, and V8 compiles
+ * and optimizes it once; with `wasm` null, or when `wasm` is not the binary
+ * of this factory, on the binary inlined in wqmesh.mjs (compiled anew).
+ */
+export async function instantiateModule(factory, wasm) {
+  if (wasm) {
+    try {
+      return await new Promise((resolve, reject) => {
+        factory({
+          instantiateWasm(imports, receive) {
+            WebAssembly.instantiate(wasm, imports).then((instance) => {
+              try {
+                receive(instance, wasm);
+              } catch (e) {
+                reject(e);  // a binary without this glue's exports
+              }
+            }, reject);
+            return {};
+          },
+        }).then(resolve, reject);
+      });
+    } catch {
+      // e.g. a LinkError: another build's binary beside this glue.
+    }
+  }
+  return factory();
 }

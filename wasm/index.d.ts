@@ -727,7 +727,10 @@ export interface Wqmesh {
 export interface LoadOptions {
   /**
    * Where the Emscripten module is. Default: `wqmesh.mjs` beside index.mjs
-   * (in a checkout, `scripts/build.sh wasm` puts it there).
+   * (in a checkout, `scripts/build.sh wasm` puts it there). Its binary is
+   * compiled from the file of the same name ending in `.wasm` beside it
+   * when there is one (once per URL and package instance), else from the
+   * binary inlined in the module.
    */
   moduleUrl?: string | URL;
 }

@@ -8,7 +8,8 @@
 // prepack step. See index.d.ts for the documentation.
 // SPDX-License-Identifier: GPL-3.0-or-later
 import optionTable, { version as moduleVersion } from './options.mjs';
-import { WqmeshError, plainOptions, runCheck, runMesh, runWrite, toBytes, writerInput } from './core.mjs';
+import { WqmeshError, compileWasm, instantiateModule, plainOptions, runCheck, runMesh, runWrite, toBytes,
+         writerInput } from './core.mjs';
 
 export { WqmeshError };
 
@@ -19,7 +20,32 @@ export const options = Object.freeze(optionTable.map((o) => Object.freeze({ ...o
 export const defaultOptions = Object.freeze(Object.fromEntries(options.map((o) => [o.name, o.default])));
 
 const MODULE_URL = new URL('./wqmesh.mjs', import.meta.url);
+// The binary of wqmesh.mjs as a file of its own (scripts/package_wasm.mjs
+// writes it), compiled once per package instance: the calling thread and
+// every worker instantiate the same compiled module (posted to each worker
+// with its requests), so V8 compiles and optimizes the code once per process
+// or page, not once per worker. In Node the calling thread compiles it from
+// the import of this file on. In a browser the first worker compiles it
+// (WebAssembly.compileStreaming) and sends it back: Chromium may then keep
+// the optimized code in its code cache for the next page load, and it
+// serializes that code on the thread that compiled, which must not be the
+// page's (a long task of about 0.1 s per caching event during a run).
+// Without the file (e.g. a bundle that left it out), the binary inlined in
+// wqmesh.mjs, compiled by each instance.
+const WASM_URL = new URL('./wqmesh.wasm', import.meta.url);
+const compiled = new Map();  // wasm URL -> Promise<WebAssembly.Module | null>
+
+function compiledModule(url) {
+  const key = String(url);
+  if (!compiled.has(key)) compiled.set(key, compileWasm(url).catch(() => null));
+  return compiled.get(key);
+}
+/** The wasm binary beside the Emscripten module at `url`: x.mjs -> x.wasm. */
+function wasmUrlOf(url) {
+  return String(url) === String(MODULE_URL) ? WASM_URL : new URL(String(url).replace(/\.m?js(?=$|[?#])/, '.wasm'));
+}
 const isNode = typeof process === 'object' && typeof process.versions?.node === 'string';
+if (isNode) compiledModule(WASM_URL);  // from the import on (see WASM_URL)
 // By a computed name, so that bundlers for the browser leave it alone.
 const nodeWorkerThreads = 'node:worker_threads';
 
@@ -78,7 +104,12 @@ async function takeWorker() {
   }
   const handle = await startWorker();
   const w = { handle, listener: null, failed: null };
-  handle.onMessage((m) => { if (m && m.id !== undefined) w.listener?.(m); });
+  handle.onMessage((m) => {
+    if (m && m.id !== undefined) w.listener?.(m);
+    // A worker that compiled wqmesh.wasm itself: the module for the next workers.
+    else if (m?.type === 'compiled' && m.wasm instanceof WebAssembly.Module && !compiled.has(m.wasmUrl))
+      compiled.set(m.wasmUrl, Promise.resolve(m.wasm));
+  });
   handle.onFailure((e) => { w.failed = e; w.onFailure?.(e); });
   return w;
 }
@@ -114,6 +145,8 @@ async function inWorker(request, { signal, onProgress } = {}) {
   if (onProgress !== undefined && typeof onProgress !== 'function')
     throw new TypeError('wqmesh: onProgress must be a function');
   if (signal?.aborted) throw abortError();
+  const wasmUrl = String(WASM_URL);
+  const wasm = compiled.has(wasmUrl) ? await compiled.get(wasmUrl) : null;
   const w = await takeWorker();
   if (signal?.aborted) {
     releaseWorker(w);
@@ -155,7 +188,7 @@ async function inWorker(request, { signal, onProgress } = {}) {
       }
     };
     if (w.failed) w.onFailure(w.failed);
-    else w.handle.post({ ...request, id });
+    else w.handle.post({ ...request, id, wasm, wasmUrl });
   });
 }
 
@@ -213,7 +246,7 @@ async function instantiate(url) {
     throw new WqmeshError('internal', `wqmesh: cannot load the wasm module ${url} ` +
                                       `(in a checkout: bash scripts/build.sh wasm): ${e.message}`, { cause: e });
   }
-  return factory();
+  return instantiateModule(factory, await compiledModule(wasmUrlOf(url)));
 }
 
 function wrap(module) {

@@ -2,13 +2,15 @@
 // thread: a module Worker in browsers, a worker_threads worker in Node (the
 // same file). It loads the wasm module (wqmesh.mjs, beside this file) once and
 // answers one request at a time:
-//   in:  { id, op: 'check'|'mesh'|'write', bytes?, options?, progress?, result?, format?, asBytes? }
+//   in:  { id, op: 'check'|'mesh'|'write', wasm, wasmUrl, bytes?, options?, progress?, result?, format?, asBytes? }
+//        (wasm: the compiled WebAssembly.Module of wqmesh.wasm, or null; wasmUrl: where wqmesh.wasm is)
 //   out: { id, type: 'progress', progress: { phase, vertices, steps, fraction } }
 //        { id, type: 'done', value }          (mesh: its typed arrays transferred)
 //        { id, type: 'error', name, code?, message }
+//        { type: 'compiled', wasm, wasmUrl }   (this worker compiled wasmUrl: the module for the next ones)
 // wasm/index.mjs starts, reuses and terminates these workers.
 // SPDX-License-Identifier: GPL-3.0-or-later
-import { WqmeshError, resultBuffers, runCheck, runMesh, runWrite } from './core.mjs';
+import { WqmeshError, compileWasm, instantiateModule, resultBuffers, runCheck, runMesh, runWrite } from './core.mjs';
 
 // Node's worker_threads by a computed name, so that bundlers for the browser
 // leave it alone.
@@ -21,7 +23,14 @@ const port = typeof self === 'object' && typeof self.postMessage === 'function' 
   })();
 
 let modulePromise = null;
-function loadModule() {
+/**
+ * The module of this worker, instantiated once, on the compiled module the
+ * calling thread sends with each request (`wasm`: index.mjs compiles
+ * wqmesh.wasm once per package instance); when it sends none, this worker
+ * compiles `wasmUrl` itself and sends the module back for the next workers;
+ * when that fails too, wqmesh.mjs's inlined binary, compiled here.
+ */
+function loadModule({ wasm, wasmUrl }) {
   modulePromise ??= (async () => {
     let factory;
     try {
@@ -30,7 +39,12 @@ function loadModule() {
       throw new WqmeshError('internal', 'wqmesh: cannot load the wasm module wqmesh.mjs beside worker.mjs ' +
                                         `(in a checkout: bash scripts/build.sh wasm): ${e.message}`);
     }
-    return factory();
+    let compiled = wasm ?? null;
+    if (!compiled && wasmUrl) {
+      compiled = await compileWasm(wasmUrl).catch(() => null);
+      if (compiled) port.post({ type: 'compiled', wasm: compiled, wasmUrl });
+    }
+    return instantiateModule(factory, compiled);
   })();
   return modulePromise;
 }
@@ -41,7 +55,7 @@ const PROGRESS_INTERVAL_MS = 50;
 async function handle(request) {
   const { id, op } = request;
   try {
-    const module = await loadModule();
+    const module = await loadModule(request);
     if (op === 'check') {
       port.post({ id, type: 'done', value: runCheck(module, request.bytes, request.options) });
     } else if (op === 'mesh') {

@@ -72,6 +72,10 @@ for (const f of readdirSync(dirname(module))) {
   }
 }
 copy(module, join(out, 'pkg/wasm/wqmesh.mjs'));
+// Its binary as a file of its own (scripts/package_wasm.mjs), when it is the
+// binary of that module: the package compiles it with compileStreaming.
+const binary = join(pkg, 'wqmesh.wasm');
+if (existsSync(binary) && module === join(pkg, 'wqmesh.mjs')) copy(binary, join(out, 'pkg/wasm/wqmesh.wasm'));
 if (readFileSync(join(pkg, 'index.mjs'), 'utf8').includes('../build/wasm/wasm/wqmesh.mjs')) {
   copy(module, join(out, 'pkg/build/wasm/wasm/wqmesh.mjs'));  // an entry that looks in the build tree
 }

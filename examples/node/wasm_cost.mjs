@@ -40,6 +40,8 @@ import { basename, dirname, join, resolve } from 'node:path';
 import { performance } from 'node:perf_hooks';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { median, nativeRun, pairArgs, spread } from './wasm_pairs.mjs';
+
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const args = process.argv.slice(2);
 
@@ -106,44 +108,22 @@ if (args[0] === '--child') {
 }
 
 // ---- The parent.
-let runs = 3;
-let calls = 1;
 let worker = false;
 let cpu = false;
 let flags = [];
-let cli = join(root, 'build/native/bin/wqmesh');
-const pkgs = [];
-const models = [];
-for (let i = 0; i < args.length; ++i) {
-  if (args[i] === '--runs') runs = Number(args[++i]);
-  else if (args[i] === '--calls') calls = Number(args[++i]);
-  else if (args[i] === '--worker') worker = true;
-  else if (args[i] === '--cpu') cpu = true;
-  else if (args[i] === '--flags') flags = args[++i].split(/\s+/).filter(Boolean);
-  else if (args[i] === '--cli') cli = resolve(args[++i]);
-  else if (args[i] === '--pkg') pkgs.push(resolve(args[++i]));
-  else models.push(resolve(args[i]));
-}
-if (!pkgs.length) pkgs.push(join(root, 'wasm'));
-if (!models.length || !(runs >= 1) || !(calls >= 1)) {
-  console.error('usage: node examples/node/wasm_cost.mjs [--runs N] [--calls N] [--cpu] [--worker] [--flags "V8 FLAGS"] ' +
-                '[--cli BIN] [--pkg DIR]... MODEL...');
-  process.exit(1);
-}
+const { runs, calls, cli, pkgs, models } = pairArgs(args, {
+  root,
+  usage: 'usage: node examples/node/wasm_cost.mjs [--runs N] [--calls N] [--cpu] [--worker] [--flags "V8 FLAGS"] ' +
+         '[--cli BIN] [--pkg DIR]... MODEL...',
+  flags: {
+    '--worker': () => { worker = true; },
+    '--cpu': () => { cpu = true; },
+    '--flags': (next) => { flags = next().split(/\s+/).filter(Boolean); },
+  },
+});
 
 const work = mkdtempSync(join(tmpdir(), 'wqmesh-cost-'));
-function native(model) {
-  const stats = join(work, 'stats.json');
-  const meshArgs = ['mesh', model, '-o', join(work, 'out.mesh'), '--stats', stats, '--quiet'];
-  const t = performance.now();
-  const r = cpu ? spawnSync('/usr/bin/time', ['-f', '%U %S', cli, ...meshArgs], { encoding: 'utf8' })
-    : spawnSync(cli, meshArgs, { encoding: 'utf8' });
-  const wall = (performance.now() - t) / 1000;
-  if (r.status !== 0) throw new Error(`native ${model}: exit ${r.status}: ${r.stderr}`);
-  const [user, sys] = cpu ? r.stderr.trim().split('\n').pop().split(' ').map(Number) : [NaN, NaN];
-  const s = JSON.parse(readFileSync(stats, 'utf8'));
-  return { wall, cpu: user + sys, core: s.time_s, tets: s.tets, phases: Object.fromEntries(s.phases.map((p) => [p.name, p.time_s])) };
-}
+const native = (model) => nativeRun(cli, model, work, cpu);
 function wasm(pkg, model) {
   const t = performance.now();
   const r = spawnSync(process.execPath, [...flags, fileURLToPath(import.meta.url), '--child', pkg, model, worker ? 'worker' : '-',
@@ -153,8 +133,6 @@ function wasm(pkg, model) {
   return { wall, ...JSON.parse(r.stdout) };
 }
 
-const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
-const spread = (xs) => `${median(xs).toFixed(3)} [${Math.min(...xs).toFixed(3)}-${Math.max(...xs).toFixed(3)}]`;
 console.log(`runs ${runs}, paired and alternating; figures: median [min-max] in s; ratios: median of the pairs' ratios` +
             (flags.length ? `; wasm under node ${flags.join(' ')}` : ''));
 for (const model of models) {

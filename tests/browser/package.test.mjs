@@ -7,7 +7,8 @@
 // /node_modules/wqmesh/wasm/index.mjs with no bundler, meshes a model in a module worker (the
 // mesh must conform, be positively oriented and keep the input volume),
 // aborts a second, long run (AbortError, within 100 ms of the abort) and
-// meshes again. No CSP violation, no page error, no failed request.
+// meshes again; wqmesh.wasm is fetched once for all of it (one compiled
+// module). No CSP violation, no page error, no failed request.
 // Skipped when Chromium or playwright-core is missing (an error under CI).
 // Run: node --test tests/browser/
 // SPDX-License-Identifier: GPL-3.0-or-later
@@ -117,6 +118,10 @@ test('the package meshes in a module worker and aborts under a strict CSP', { sk
     const urls = browser.requests.map((r) => new URL(r.url).pathname);
     assert.ok(urls.includes('/node_modules/wqmesh/wasm/worker.mjs'), `the worker was loaded: ${urls.join(' ')}`);
     assert.ok(urls.includes('/node_modules/wqmesh/wasm/wqmesh.mjs'), 'the module was loaded');
+    // index.mjs compiles the binary once, from wqmesh.wasm (compileStreaming),
+    // for the page and every worker: fetched once, though three runs in two
+    // workers (the abort terminates the first).
+    assert.equal(urls.filter((u) => u === '/node_modules/wqmesh/wasm/wqmesh.wasm').length, 1, 'wqmesh.wasm fetched once');
     assert.ok(!first.mainThreadHasModule);
   } finally {
     await browser.close();

@@ -10,6 +10,9 @@
 //   misspelt option: each a clear error;
 // - a caller run as `node --input-type=module -e ...` (flags a worker
 //   refuses) gets the same valid mesh as this process;
+// - wqmesh.wasm is the binary inlined in wqmesh.mjs; instances on one
+//   compiled module give the inlined binary's mesh; a corrupt or foreign
+//   .wasm beside a module falls back to the inlined binary;
 // - abort in the middle of a run, in each phase (PUMP included): an AbortError within
 //   100 ms of the abort, and the next call succeeds; progress never goes
 //   down and the phases come in order;
@@ -23,15 +26,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { after, test } from 'node:test';
-import { fileURLToPath } from 'node:url';
+import { fileURLToPath, pathToFileURL } from 'node:url';
 
 import { WqmeshError, check, defaultOptions, loadWqmesh, mesh, meshSync, options, ready, writeMedit, writeTetgen,
          writeVtu } from '../../wasm/index.mjs';
+import { compileWasm, instantiateModule } from '../../wasm/core.mjs';
 import { tetVolumes } from './lib/tets.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
@@ -448,4 +452,42 @@ process.stdout.write(JSON.stringify({ conforming: r.stats.conforming, vertices: 
   const here = await mesh(example('spike.off'));
   assert.equal(got.tets.length, here.tets.length, 'the same mesh as in this process');
   assert.ok(Math.abs(volume - signedVolume(here.vertices, here.tets, 'spike.off')) <= 1e-9 * Math.abs(volume));
+});
+
+test('wqmesh.wasm is the inlined binary; instances on one compiled module mesh as the inlined binary does', async () => {
+  const glue = join(root, 'wasm/wqmesh.mjs');
+  const inlined = readFileSync(glue, 'utf8').match(/data:application\/octet-stream;base64,([A-Za-z0-9+/=]+)/);
+  assert.ok(inlined, 'wqmesh.mjs inlines its binary');
+  assert.ok(Buffer.from(inlined[1], 'base64').equals(readFileSync(join(root, 'wasm/wqmesh.wasm'))),
+            'wasm/wqmesh.wasm is the binary of wasm/wqmesh.mjs (scripts/package_wasm.mjs)');
+  const factory = (await import(pathToFileURL(glue).href)).default;
+  const compiled = await compileWasm(pathToFileURL(join(root, 'wasm/wqmesh.wasm')));
+  assert.ok(compiled instanceof WebAssembly.Module);
+  const bytes = example('spike.off');
+  const results = [];
+  for (const wasm of [compiled, compiled, null]) {
+    const module = await instantiateModule(factory, wasm);
+    const r = module.mesh(bytes, {}, undefined);
+    assert.equal(r.error, undefined);
+    results.push(r);
+  }
+  for (const r of results.slice(1)) {
+    assert.deepEqual(r.vertices, results[0].vertices);
+    assert.deepEqual(r.tets, results[0].tets);
+  }
+  signedVolume(results[0].vertices, results[0].tets, 'spike.off');
+});
+
+test('a corrupt or foreign .wasm beside a module: loadWqmesh falls back to the inlined binary', { timeout: 60000 }, async () => {
+  const cases = { corrupt: Buffer.from('not wasm at all'), foreign: Buffer.from([0, 97, 115, 109, 1, 0, 0, 0]) };
+  for (const [name, binary] of Object.entries(cases)) {
+    const dir = join(work, `beside-${name}`);
+    mkdirSync(dir);
+    copyFileSync(join(root, 'wasm/wqmesh.mjs'), join(dir, 'wqmesh.mjs'));
+    writeFileSync(join(dir, 'wqmesh.wasm'), binary);
+    const wq = await loadWqmesh({ moduleUrl: pathToFileURL(join(dir, 'wqmesh.mjs')) });
+    const r = wq.mesh(example('box.off'));
+    assert.equal(r.stats.conforming, true, name);
+    signedVolume(r.vertices, r.tets, `box.off beside a ${name} .wasm`);
+  }
 });

@@ -29,7 +29,7 @@ const app = join(work, 'app');
 after(() => rmSync(work, { recursive: true, force: true }));
 
 const EXPECTED_FILES = ['LICENSE', 'README.md', 'package.json', 'wasm/cli.mjs', 'wasm/core.mjs', 'wasm/index.d.ts',
-  'wasm/index.mjs', 'wasm/options.mjs', 'wasm/worker.mjs', 'wasm/wqmesh.mjs'];
+  'wasm/index.mjs', 'wasm/options.mjs', 'wasm/worker.mjs', 'wasm/wqmesh.mjs', 'wasm/wqmesh.wasm'];
 
 function run(cmd, args, options = {}) {
   const r = spawnSync(cmd, args, { encoding: 'utf8', maxBuffer: 64 * 2 ** 20, ...options });
