@@ -286,7 +286,7 @@ export interface MeshOptions {
    * slides across slanted facets on the tets of the smallest angles; never
    * more tets, no new tet under 5 degrees); slit.off 18.52 -> 28.19 degrees,
    * the same mesh as the native build's.
-   * Default false: it costs 3 to 12 times REFINE + PUMP's time on small
+   * Default false: it costs 3 to 8 times REFINE + PUMP's time on small
    * models. `--polish`. See `stats.improve.polished`.
    */
   polish?: boolean;

@@ -19,7 +19,7 @@ export const RUN_PARAMS = [
   { key: 'improve', label: 'improve', type: 'bool', def: true,
     help: 'Flips, smoothing and insertion after PUMP raise the smallest dihedral angle; the boundary stays exact (beyond the paper; off: the paper\'s WQMESH output).' },
   { key: 'polish', label: 'polish', type: 'bool', def: false,
-    help: 'With improve: a polish after its passes raises the smallest dihedral angle further (beyond the paper; 3-6 times the refinement\'s time on small models).' },
+    help: 'With improve: a polish after its passes raises the smallest dihedral angle further (beyond the paper; 3-8 times the refinement\'s time on small models).' },
   { key: 'maxSize', label: 'size bound', type: 'number', def: 0, min: 0, max: 1e300, step: 'any',
     help: 'Largest circumradius allowed, in model units (0: no bound; beyond the paper).' },
   { key: 'maxVertices', label: 'vertex limit', type: 'number', def: 1000000, min: 8, max: 1e9, step: 1,
