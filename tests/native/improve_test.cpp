@@ -665,6 +665,68 @@ TEST(Improve, ASegmentVertexIsContractedOnlyAlongItsSegment) {
   EXPECT_NEAR(facet_area(c.r, 1), s3 / 4, 1e-12);
 }
 
+// The work bound of vertex removal (kContractMaxStar, improve.h; beyond the
+// paper): a bipyramid over a regular k-gon in z = 0 (radius 1, apexes at
+// z = +-1; input vertices), all of it the star of one interior Steiner
+// vertex v just inside the k-gon's corner p0 (1e-4 towards the axis): the
+// 2k tets (v, apex, p_i, p_i+1). The tets at v and p0 are nearly flat (the
+// mesh's worst), and contracting v onto p0 fans the bipyramid from p0 with
+// tets of min-sine about 2 pi / k, better by the strict rule.
+Config bipyramid_star(int k) {
+  Config c;
+  for (int i = 0; i < k; ++i)
+    c.r.mesh.vertices.push_back({{std::cos(2 * geometry::kPi * i / k), std::sin(2 * geometry::kPi * i / k), 0}});
+  c.r.mesh.vertices.push_back({{0, 0, 1}});         // k
+  c.r.mesh.vertices.push_back({{0, 0, -1}});        // k + 1
+  c.r.mesh.vertices.push_back({{1 - 1e-4, 0, 0}});  // v = k + 2
+  for (int i = 0; i < k; ++i)
+    for (int apex : {k, k + 1}) c.add_tet(k + 2, i, (i + 1) % k, apex);
+  c.close();
+  for (int x = 0; x < k + 2; ++x) c.r.input_vertex[x] = x;
+  return c;
+}
+
+TEST(Improve, AVertexWhoseStarExceedsTheWorkBoundIsNotContracted) {
+  // k = kContractMaxStar / 2: a star of exactly kContractMaxStar tets, the
+  // largest contracted; one more corner: kContractMaxStar + 2 tets, refused.
+  const int k_in = int(mesher::kContractMaxStar / 2), k_out = k_in + 1;
+  for (const int k : {k_in, k_out}) {
+    SCOPED_TRACE(k);
+    Config c = bipyramid_star(k);
+    const int v = k + 2;
+    ASSERT_EQ(c.r.mesh.tets.size(), std::size_t(2 * k));
+    const double before = c.worst(), volume = c.volume();
+    const std::vector<std::array<int, 4>> tets = c.r.mesh.tets;
+    Improver im(c.r, 2.2, 0);
+    std::vector<int> targets;
+    im.contract_targets(v, targets);
+    if (k == k_out) {
+      EXPECT_TRUE(targets.empty()) << "a star of " << 2 * k << " tets is beyond the bound";
+      EXPECT_FALSE(im.contract_vertex(v));
+      EXPECT_FALSE(im.contract(v, 0));
+      EXPECT_FALSE(im.removed(v));
+      EXPECT_EQ(im.stats().contractions, 0u);
+      im.finish();
+      EXPECT_EQ(c.r.mesh.tets, tets) << "the mesh is left as it was";
+      EXPECT_EQ(c.r.mesh.vertices.size(), std::size_t(k + 3));
+      continue;
+    }
+    EXPECT_EQ(targets.size(), std::size_t(k + 2)) << "every neighbour of an interior vertex";
+    ASSERT_TRUE(im.contract_vertex(v));
+    EXPECT_TRUE(im.removed(v));
+    EXPECT_EQ(im.stats().contractions, 1u);
+    im.finish();
+    // The bipyramid without v, fanned from the target u: the tets at edge
+    // (v, u) are gone.
+    ASSERT_EQ(c.r.mesh.vertices.size(), std::size_t(k + 2));
+    EXPECT_LT(c.r.mesh.tets.size(), std::size_t(2 * k));
+    EXPECT_EQ(c.r.mesh.boundary.size(), std::size_t(2 * k)) << "the surface is untouched";
+    EXPECT_GT(c.worst(), before);
+    EXPECT_NEAR(c.volume(), volume, 1e-12);
+    expect_positive(c.r);
+  }
+}
+
 // The worst min-sine over a mesh's tets.
 double worst(const TetMesh& m) {
   double w = HUGE_VAL;

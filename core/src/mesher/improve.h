@@ -75,10 +75,12 @@ constexpr int kMaxCavity = 48;
 /// under 5 degrees left where 5 leaves 708, 3 leaves 757, 20 leaves 728).
 constexpr double kContractBelowDeg = 10;
 /// A work bound (beyond the paper and Klingner-Shewchuk): a vertex whose
-/// star holds more than kContractMaxStar tets is not contracted. Each
-/// candidate target costs a sort of the whole star, so a vertex with a star of
-/// n tets costs O(n^2 log n); mpi.off's default run spent more than 30 CPU
-/// minutes in contract_pass without it. Stars of sound meshes hold 10-100 tets.
+/// star holds more than kContractMaxStar tets is not contracted. A vertex
+/// with a star of n tets has about n / 2 targets, each judged in O(n) (the
+/// star's vertex list once per vertex: removal()), so O(n^2) per vertex;
+/// before that list was sorted per target (O(n^2 log n)), mpi.off's default
+/// run spent more than 30 CPU minutes in contract_pass without the bound.
+/// Stars of sound meshes hold 10-100 tets.
 constexpr std::size_t kContractMaxStar = 256;
 /// The relaxed rule counts the tets below sin(kContractCountDeg) (issue 14's
 /// measure: tets under 5 degrees).
@@ -504,13 +506,41 @@ class Improver {
   bool removed(int v) const { return v < int(removed_.size()) && removed_[v]; }
 
  private:
-  /// v's star, its boundary triangles (indices into bnd_) and its targets;
-  /// false when v may not be removed.
-  bool removal(int v, std::vector<int>& star, std::vector<int>& bnd, std::vector<int>& targets) const;
-  /// The new tets and boundary changes of contracting (v, u), and their worst
-  /// min-sine; -HUGE_VAL when a check or accept() refuses it.
-  double contraction(int v, int u, const std::vector<int>& star, const std::vector<int>& bnd, std::vector<Tet>& fresh,
+  /// What contraction() needs of v's star for every target u, computed once
+  /// per vertex by removal() (each target then costs O(star + star of u):
+  /// before, each rebuilt and sorted the star's vertex list, O(n^2 log n)
+  /// per vertex of a star of n tets).
+  struct Removal {
+    int v = -1;
+    std::vector<int> star, bnd, targets;  ///< v's tets, boundary triangles (into bnd_), targets
+    /// Per triangle of bnd: its facet's dominant axis (of the area normals
+    /// of v's triangles in that facet), the sign of the normal along it, and
+    /// whether the triangle itself is seen with that sign.
+    std::vector<signed char> drop, sign, old_ok;
+    double worst_old = 0;     ///< the star's worst min-sine
+    int bad_old = 0;          ///< the star's tets below sin(kContractCountDeg)
+    double floor = 0;         ///< the relaxed rule's floor (NaN: strict rule only)
+    std::size_t witness = 0;  ///< the star's tet that refused the last target (tried first)
+  };
+  /// Fills `r` for v; false when v may not be removed. Marks the star's
+  /// vertices in contract_marks_ (value 0).
+  bool removal(int v, Removal& r) const;
+  /// The new tets and boundary changes of contracting (r.v, u), and their
+  /// worst min-sine; -HUGE_VAL when a check or accept() refuses it. Needs
+  /// contract_marks_ as removal(r) left it (each call marks its own shared
+  /// vertices with u + 1).
+  double contraction(Removal& r, int u, std::vector<Tet>& fresh,
                      std::vector<std::pair<int, std::array<int, 3>>>& boundary) const;
+  /// Applies an accepted contraction of r.v (fresh and boundary from
+  /// contraction()); false when replace() refuses it.
+  bool apply_contraction(const Removal& r, const std::vector<Tet>& fresh,
+                         const std::vector<std::pair<int, std::array<int, 3>>>& boundary);
+  mutable Marks contract_marks_;  ///< the star's vertices (removal, contraction)
+  /// contract_vertex()'s (kept to spare allocations): the removal, and the
+  /// new tets and boundary of the target being judged [0] and of the best [1].
+  Removal contract_removal_;
+  std::vector<Tet> contract_fresh_[2];
+  std::vector<std::pair<int, std::array<int, 3>>> contract_boundary_[2];
   /// Whether v lies on or inside the sphere of a vertex ball (cached).
   bool on_vertex_ball(int v) const;
   /// Called by finish(): drops the removed vertices from r (renumbering the
@@ -519,6 +549,11 @@ class Improver {
   void drop_removed();
   std::vector<char> removed_;
   mutable std::vector<signed char> ball_point_;
+  /// on_vertex_ball()'s index: the vertex balls of vertex_balls_of_ sorted by
+  /// the x of their centres, and the largest radius (with the slack).
+  mutable const ProtectingBalls* vertex_balls_of_ = nullptr;
+  mutable std::vector<ProtectingBall> vertex_balls_;
+  mutable double vertex_ball_reach_ = 0;
   std::vector<std::int64_t> contract_tried_;
   /// In contract_pass(): the worst min-sine and the smallest dihedral angle
   /// (degrees) of the mesh, the relaxed rule's floors; NaN outside it (the

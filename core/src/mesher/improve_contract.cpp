@@ -79,15 +79,39 @@ bool Improver::on_vertex_ball(int v) const {
   if (balls_ == nullptr) return false;
   if (v >= int(ball_point_.size())) ball_point_.resize(P_.size(), -1);
   if (ball_point_[v] < 0) {
+    // The vertex balls by the x of their centres (built once per set of
+    // balls): only those within the largest radius of v's x can hold v.
+    // The same test on fewer balls, so the same answer (fandisk: 4,512
+    // balls were looked at per vertex).
+    if (vertex_balls_of_ != balls_) {
+      vertex_balls_of_ = balls_;
+      vertex_balls_.clear();
+      vertex_ball_reach_ = 0;
+      for (const ProtectingBall& b : balls_->all())
+        if (b.vertex_ball) {
+          vertex_balls_.push_back(b);
+          vertex_ball_reach_ = std::max(vertex_ball_reach_, b.radius * (1 + kSphereSlack));
+        }
+      std::sort(vertex_balls_.begin(), vertex_balls_.end(),
+                [](const ProtectingBall& a, const ProtectingBall& b) { return a.center[0] < b.center[0]; });
+      vertex_ball_reach_ *= 1 + 1e-6;  // beyond the rounding of the distance below
+    }
+    const double x = P_[v][0], reach = vertex_ball_reach_ + 1e-12 * std::fabs(x);  // and of x -+ reach
+    auto it = std::lower_bound(vertex_balls_.begin(), vertex_balls_.end(), x - reach,
+                               [](const ProtectingBall& b, double lo) { return b.center[0] < lo; });
     ball_point_[v] = 0;
-    for (const ProtectingBall& b : balls_->all())
-      if (b.vertex_ball && std::sqrt(geometry::dist2(P_[v], b.center)) <= b.radius * (1 + kSphereSlack))
+    for (; it != vertex_balls_.end() && it->center[0] <= x + reach; ++it)
+      if (std::sqrt(geometry::dist2(P_[v], it->center)) <= it->radius * (1 + kSphereSlack)) {
         ball_point_[v] = 1;
+        break;
+      }
   }
   return ball_point_[v] == 1;
 }
 
-bool Improver::removal(int v, std::vector<int>& S, std::vector<int>& bt, std::vector<int>& targets) const {
+bool Improver::removal(int v, Removal& r) const {
+  r.v = v;
+  std::vector<int>&S = r.star, &bt = r.bnd, &targets = r.targets;
   S.clear();
   bt.clear();
   targets.clear();
@@ -143,7 +167,49 @@ bool Improver::removal(int v, std::vector<int>& S, std::vector<int>& bt, std::ve
   }
   std::sort(targets.begin(), targets.end());
   targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
-  return !targets.empty();
+  if (targets.empty()) return false;
+  // Once per vertex, what no target changes: the star's vertices (marked),
+  // its worst and its count below sin(kContractCountDeg), the relaxed
+  // floor, and per boundary triangle its facet's axis and sign.
+  contract_marks_.reset(P_.size());
+  for (int t : S)
+    for (int x : tets_[t]) contract_marks_.put(x, 0);
+  const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
+  r.worst_old = HUGE_VAL;
+  r.bad_old = 0;
+  for (int t : S) {
+    r.worst_old = std::min(r.worst_old, q_[t]);
+    r.bad_old += q_[t] < below;
+  }
+  r.floor = std::isnan(contract_floor_) ? contract_floor_
+                                        : std::max(contract_floor_, std::sin(contract_dihedral_ * geometry::kPi / 180));
+  r.witness = 0;
+  r.drop.assign(bt.size(), 0);
+  r.sign.assign(bt.size(), 0);
+  r.old_ok.assign(bt.size(), 0);
+  for (std::size_t i = 0; i < bt.size(); ++i) {
+    bool done = false;  // an earlier triangle of the same facet has them
+    for (std::size_t j = 0; j < i && !done; ++j)
+      if (label[bt[j]] == label[bt[i]]) r.drop[i] = r.drop[j], r.sign[i] = r.sign[j], done = true;
+    if (!done) {
+      // The facet's direction: the area normals of v's triangles in it.
+      Point3 normal{{0, 0, 0}};
+      for (int o : bt)
+        if (label[o] == label[bt[i]]) {
+          const Tri& t = bnd_[o];
+          normal = geometry::add(normal,
+                                 geometry::cross(geometry::sub(P_[t[1]], P_[t[0]]), geometry::sub(P_[t[2]], P_[t[0]])));
+        }
+      int drop = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::fabs(normal[k]) > std::fabs(normal[drop])) drop = k;
+      r.drop[i] = static_cast<signed char>(drop);
+      r.sign[i] = normal[drop] > 0 ? 1 : -1;
+    }
+    const Tri& o = bnd_[bt[i]];
+    r.old_ok[i] = projected_orientation(P_[o[0]], P_[o[1]], P_[o[2]], r.drop[i]) == r.sign[i];
+  }
+  return true;
 }
 
 void Improver::set_contract_floors() {
@@ -153,21 +219,53 @@ void Improver::set_contract_floors() {
 }
 
 void Improver::contract_targets(int v, std::vector<int>& out) const {
-  std::vector<int> S, bt;
-  removal(v, S, bt, out);
+  Removal r;
+  removal(v, r);
+  out.swap(r.targets);
 }
 
-double Improver::contraction(int v, int u, const std::vector<int>& S, const std::vector<int>& bt,
-                             std::vector<Tet>& fresh, std::vector<std::pair<int, Tri>>& boundary) const {
+double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
+                             std::vector<std::pair<int, Tri>>& boundary) const {
+  const int v = r.v;
+  const std::vector<int>&S = r.star, &bt = r.bnd;
   fresh.clear();
   boundary.clear();
+  // The cheapest refusals first (each check refuses on its own, so their
+  // order changes no result). The boundary: a triangle of a facet not seen
+  // with the facet's sign (a fold already there) refuses every target off it.
+  for (std::size_t i = 0; i < bt.size(); ++i)
+    if (!r.old_ok[i] && !holds(bnd_[bt[i]], u)) return -HUGE_VAL;
+  // The min-sine rule before the exact checks: the new tets' min-sines must
+  // all beat the star's worst (the strict rule) or the relaxed floor, as
+  // accept() will ask; from the tet that refused the last target on.
+  const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
+  bool strict = true, relaxed = !std::isnan(r.floor);
+  int bad = r.bad_old, holding = 0;
+  for (std::size_t k = 0; k < S.size(); ++k) {
+    const std::size_t i = (r.witness + k) % S.size();
+    Tet T = tets_[S[i]];
+    if (T[0] == u || T[1] == u || T[2] == u || T[3] == u) {
+      ++holding;
+      continue;
+    }
+    for (int& x : T)
+      if (x == v) x = u;
+    const double m = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    strict = strict && beats(m, r.worst_old);
+    relaxed = relaxed && beats(m, r.floor);
+    bad -= m < below;
+    if (!strict && !relaxed) {
+      r.witness = i;
+      return -HUGE_VAL;
+    }
+  }
+  if (holding == 0 || holding == int(S.size())) return -HUGE_VAL;
   // The link condition: a vertex adjacent to both v and u is a vertex of a
-  // tet holding edge vu (else the contraction would double an edge).
-  std::vector<int> SU, common, shared;
-  star(u, SU);
+  // tet holding edge vu (else the contraction would double an edge). The
+  // star's vertices are marked (removal()); those of the tets at vu get u + 1.
   for (int t : S) {
     if (has(t, u)) {
-      for (int x : tets_[t]) shared.push_back(x);
+      for (int x : tets_[t]) contract_marks_.put(x, u + 1);
       continue;
     }
     Tet T = tets_[t];
@@ -175,21 +273,19 @@ double Improver::contraction(int v, int u, const std::vector<int>& S, const std:
       if (x == v) x = u;
     fresh.push_back(T);
   }
-  if (shared.empty() || fresh.empty()) return -HUGE_VAL;
-  std::sort(shared.begin(), shared.end());
-  for (int t : S)
-    for (int x : tets_[t]) common.push_back(x);
-  std::sort(common.begin(), common.end());
-  common.erase(std::unique(common.begin(), common.end()), common.end());
+  std::vector<int> SU;
+  star(u, SU);
   for (int t : SU)
-    for (int x : tets_[t])
-      if (std::binary_search(common.begin(), common.end(), x) && !std::binary_search(shared.begin(), shared.end(), x))
-        return -HUGE_VAL;
+    for (int x : tets_[t]) {
+      const int mark = contract_marks_.get(x);
+      if (mark >= 0 && mark != u + 1) return -HUGE_VAL;
+    }
   // The boundary: triangles at edge vu go, the others get u for v; in each
   // facet the fan must not fold (every triangle, old and new, seen along the
   // facet's dominant axis with the same exact orientation) and no new
   // triangle may be degenerate (three exactly collinear vertices).
-  for (int b : bt) {
+  for (std::size_t i = 0; i < bt.size(); ++i) {
+    const int b = bt[i];
     if (holds(bnd_[b], u)) {
       boundary.push_back({b, {{-1, -1, -1}}});
       continue;
@@ -197,51 +293,27 @@ double Improver::contraction(int v, int u, const std::vector<int>& S, const std:
     const Tri n = with(bnd_[b], v, u);
     const Point3 &a = P_[n[0]], &c = P_[n[1]], &d = P_[n[2]];
     if (CGAL::collinear(cgal::to_cgal(a), cgal::to_cgal(c), cgal::to_cgal(d))) return -HUGE_VAL;
-    // The facet's direction: the area normals of v's triangles in it.
-    Point3 normal{{0, 0, 0}};
-    for (int o : bt)
-      if (r_.mesh.boundary_facet[o] == r_.mesh.boundary_facet[b]) {
-        const Tri& t = bnd_[o];
-        normal = geometry::add(normal,
-                               geometry::cross(geometry::sub(P_[t[1]], P_[t[0]]), geometry::sub(P_[t[2]], P_[t[0]])));
-      }
-    int drop = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::fabs(normal[k]) > std::fabs(normal[drop])) drop = k;
-    const int sign = normal[drop] > 0 ? 1 : -1;
-    const Tri& o = bnd_[b];
-    if (projected_orientation(P_[o[0]], P_[o[1]], P_[o[2]], drop) != sign ||
-        projected_orientation(a, c, d, drop) != sign)
-      return -HUGE_VAL;
+    if (projected_orientation(a, c, d, r.drop[i]) != r.sign[i]) return -HUGE_VAL;
     boundary.push_back({b, n});
   }
   double worst = -HUGE_VAL;
-  if (accept(S, fresh, worst)) return worst;
+  if (strict && accept(S, fresh, worst)) return worst;
   // The relaxed rule (in a pass only): fewer tets under the target in the
   // star, and every new tet better than the worst tet of the whole mesh.
-  if (std::isnan(contract_floor_)) return -HUGE_VAL;
-  const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
-  int bad = 0;
-  for (int t : S) bad += q_[t] < below;
-  for (const Tet& T : fresh) bad -= min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) < below;
   // The floor in min-sine and in the smallest dihedral angle: a new tet
   // whose min-sine beats sin(D) has its smallest dihedral above D.
-  const double floor = std::max(contract_floor_, std::sin(contract_dihedral_ * geometry::kPi / 180));
-  if (bad <= 0 || !accept(S, fresh, worst, floor)) return -HUGE_VAL;
+  if (!relaxed || bad <= 0 || !accept(S, fresh, worst, r.floor)) return -HUGE_VAL;
   return worst;
 }
 
-bool Improver::contract(int v, int u) {
-  std::vector<int> S, bt, targets;
-  if (!removal(v, S, bt, targets) || !std::binary_search(targets.begin(), targets.end(), u)) return false;
-  std::vector<Tet> fresh;
-  std::vector<std::pair<int, Tri>> boundary;
-  if (contraction(v, u, S, bt, fresh, boundary) == -HUGE_VAL) return false;
+bool Improver::apply_contraction(const Removal& r, const std::vector<Tet>& fresh,
+                                 const std::vector<std::pair<int, Tri>>& boundary) {
+  const int v = r.v;
   // Whether the star holds the mesh's worst tet (then the floors may rise).
   bool floor_tet = false;
   if (!std::isnan(contract_floor_))
-    for (int t : S) floor_tet = floor_tet || q_[t] <= contract_floor_ || dihedral(t) <= contract_dihedral_;
-  if (!replace(S, fresh, boundary, v)) return false;
+    for (int t : r.star) floor_tet = floor_tet || q_[t] <= contract_floor_ || dihedral(t) <= contract_dihedral_;
+  if (!replace(r.star, fresh, boundary, v)) return false;
   if (floor_tet) set_contract_floors();
   if (v >= int(removed_.size())) removed_.resize(P_.size(), 0);
   removed_[v] = 1;
@@ -251,18 +323,31 @@ bool Improver::contract(int v, int u) {
   return true;
 }
 
-bool Improver::contract_vertex(int v) {
-  std::vector<int> S, bt, targets;
-  if (!removal(v, S, bt, targets)) return false;
-  double best = -HUGE_VAL;
-  int best_u = -1;
+bool Improver::contract(int v, int u) {
+  Removal r;
+  if (!removal(v, r) || !std::binary_search(r.targets.begin(), r.targets.end(), u)) return false;
   std::vector<Tet> fresh;
   std::vector<std::pair<int, Tri>> boundary;
-  for (int u : targets) {
-    const double w = contraction(v, u, S, bt, fresh, boundary);
-    if (w > best) best = w, best_u = u;
+  if (contraction(r, u, fresh, boundary) == -HUGE_VAL) return false;
+  return apply_contraction(r, fresh, boundary);
+}
+
+bool Improver::contract_vertex(int v) {
+  Removal& r = contract_removal_;
+  if (!removal(v, r)) return false;
+  double best = -HUGE_VAL;
+  int best_u = -1;
+  std::vector<Tet>& fresh = contract_fresh_[0];
+  std::vector<std::pair<int, Tri>>& boundary = contract_boundary_[0];
+  for (int u : r.targets) {
+    const double w = contraction(r, u, fresh, boundary);
+    if (w > best) {
+      best = w, best_u = u;
+      contract_fresh_[0].swap(contract_fresh_[1]);
+      contract_boundary_[0].swap(contract_boundary_[1]);
+    }
   }
-  return best_u >= 0 && contract(v, best_u);
+  return best_u >= 0 && apply_contraction(r, contract_fresh_[1], contract_boundary_[1]);
 }
 
 std::size_t Improver::contract_pass() {
