@@ -266,9 +266,26 @@ double Improver::shortest_at(int v, const std::vector<int>& skip) const {
 
 void Improver::forget(const std::vector<int>& ids) {
   if (!classifier_) return;
-  for (int t : ids)
+  forgot_marks_.reset(P_.size());
+  forgot_l2_.clear();
+  forgot_ = true;
+  for (int t : ids) {
+    const Tet& T = tets_[t];
     if (shape_[t] != TetClassifier::Shape::good)
-      for (int v : tets_[t]) --bad_at_[v];
+      for (int v : T) --bad_at_[v];
+    for (int i = 0; i < 4; ++i) {
+      double m = HUGE_VAL;
+      for (int j = 0; j < 4; ++j)
+        if (j != i) m = std::min(m, geometry::dist2(P_[T[j]], P_[T[i]]));
+      const int at = forgot_marks_.get(T[i]);
+      if (at < 0) {
+        forgot_marks_.put(T[i], int(forgot_l2_.size()));
+        forgot_l2_.push_back(m);
+      } else {
+        forgot_l2_[at] = std::min(forgot_l2_[at], m);
+      }
+    }
+  }
 }
 
 void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from) {
@@ -286,8 +303,31 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   }
   std::sort(verts.begin(), verts.end());
   verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  const bool forgot = forgot_;
+  forgot_ = false;
   if (moved < 0) {
-    for (int v : verts) L2_[v] = shortest_at(v);
+    if (!forgot) {
+      for (int v : verts) L2_[v] = shortest_at(v);
+      return;
+    }
+    // After replace() (forget(old), then learn(new); improve.h, "The
+    // phase's time on large meshes"): v's shortest edge on the new tets.
+    std::vector<double> fresh(verts.size(), HUGE_VAL);
+    for (int t : ids) {
+      const Tet& T = tets_[t];
+      for (int i = 0; i < 4; ++i) {
+        double& m = fresh[std::lower_bound(verts.begin(), verts.end(), T[i]) - verts.begin()];
+        for (int j = 0; j < 4; ++j)
+          if (j != i) m = std::min(m, geometry::dist2(P_[T[j]], P_[T[i]]));
+      }
+    }
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+      const int v = verts[i], at = forgot_marks_.get(v);
+      if (at >= 0 && L2_[v] < forgot_l2_[at])
+        L2_[v] = std::min(L2_[v], fresh[i]);  // its shortest edge lies outside the old tets: it stays
+      else
+        L2_[v] = shortest_at(v);
+    }
     return;
   }
   // Only `moved` changed place (ids is its star): an edge at u != moved

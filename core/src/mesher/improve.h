@@ -262,6 +262,8 @@ class Improver {
   /// die, learn() after (their shapes, the bad-tet counts at their vertices
   /// and L_v of their vertices). With moved >= 0, ids is the star of vertex
   /// `moved`, the only one that changed place (from `from`; smooth()).
+  /// forget() also records, per vertex of `ids`, its shortest edge on them
+  /// (forgot_l2_); the next learn() without `moved` reads it (see below).
   void forget(const std::vector<int>& ids);
   void learn(const std::vector<int>& ids, int moved = -1, const Point3& from = {});
   /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
@@ -369,6 +371,19 @@ class Improver {
     if (t < int(dih_.size())) dih_[t] = std::numeric_limits<double>::quiet_NaN();
   }
   mutable std::vector<double> dih_;  ///< NaN: not known
+
+  // ---- The phase's time on large meshes (issue 15, h4). On mpi.off (2.2M
+  // tets) learn()'s star walk per vertex of the new tets (shortest_at) took
+  // a quarter of the phase: a vertex with a large star (up to 1,498 tets in
+  // its final mesh) is walked at every change beside it. A change replaces tets
+  // `old` by new ones, so L_v after is the shorter of v's edges on the new
+  // tets and v's edges outside `old`; when L_v before was shorter than every
+  // edge of v on `old` (forgot_l2_), it is an edge outside `old` and stays,
+  // so no walk is needed. The same values as the walk (a minimum of the
+  // same distances), bit for bit.
+  Marks forgot_marks_;             ///< v -> its index in forgot_l2_ (forget() to learn())
+  std::vector<double> forgot_l2_;  ///< v's shortest edge on the tets forget() was given
+  bool forgot_ = false;            ///< forgot_l2_ is that of the tets learn() replaces
 
   // ---- Boundary operations (improve_boundary.cpp; beyond the paper and
   // beyond Stellar, which moves boundary vertices freely). Conformity stays
