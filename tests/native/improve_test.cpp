@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <set>
 
 #include "cgal_types.h"
@@ -1148,6 +1149,26 @@ TEST(Improve, AFlipThatShortensLvSoThatATetBesideItLosesNearIsRefused) {
   expect_flip_refused(c, B);
 }
 
+// A run of model f without the phase (MeshOptions::improve = false) and an
+// Improver on its mesh with the classes set (the protecting balls, theta),
+// as improve_phase() makes it. Held by pointer: the Improver refers to r.
+struct Unimproved {
+  MeshOptions opt;
+  MeshResult r;
+  mesher::ProtectingBalls balls{Box{}};
+  std::unique_ptr<Improver> im;
+};
+std::unique_ptr<Unimproved> unimproved(const std::string& f) {
+  auto u = std::make_unique<Unimproved>();
+  const invariants::Input in = invariants::load(f);
+  u->opt.improve = false;
+  u->r = mesh_polyhedron(in.plc, in.analysis, u->opt);
+  u->balls = index_of(u->r.protecting_balls);
+  u->im = std::make_unique<Improver>(u->r, u->opt.rho0, u->opt.max_size);
+  u->im->set_classes(&u->balls, u->opt.theta_deg);
+  return u;
+}
+
 TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {
   std::vector<std::string> files = models();
   if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/part.off"))  // violations before the phase
@@ -1155,14 +1176,11 @@ TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {
   ASSERT_FALSE(files.empty());
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const invariants::Input in = invariants::load(f);
-    MeshOptions opt;
-    opt.improve = false;
-    MeshResult r = mesh_polyhedron(in.plc, in.analysis, opt);
-    const mesher::ProtectingBalls balls = index_of(r.protecting_balls);
+    const auto run = unimproved(f);
+    MeshResult& r = run->r;
+    const MeshOptions& opt = run->opt;
+    Improver& im = *run->im;
     const std::size_t violations_before = r.violations;
-    Improver im(r, opt.rho0, opt.max_size);
-    im.set_classes(&balls, opt.theta_deg);
     // Before: the guard's class of every tet is the statistics' (classify_tets).
     for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) ASSERT_EQ(im.tet_class(int(t)), r.tet_class[t]) << "tet " << t;
     ASSERT_TRUE(im.run());
@@ -1172,7 +1190,7 @@ TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {
     for (std::size_t t = 0; t < im.tets().size(); ++t)
       if (im.alive(int(t))) kept.push_back(im.tet_class(int(t)));
     im.finish();
-    ASSERT_TRUE(mesher::classify_tets(r, balls, opt));
+    ASSERT_TRUE(mesher::classify_tets(r, run->balls, opt));
     EXPECT_EQ(kept, r.tet_class);
     // No accepted change adds a violation.
     EXPECT_LE(r.violations, violations_before);
@@ -1192,13 +1210,8 @@ TEST(Improve, EveryVertexsShortestEdgeIsKeptCurrentThroughThePhase) {
   std::size_t smoothed = 0;
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const invariants::Input in = invariants::load(f);
-    MeshOptions opt;
-    opt.improve = false;
-    MeshResult r = mesh_polyhedron(in.plc, in.analysis, opt);
-    const mesher::ProtectingBalls balls = index_of(r.protecting_balls);
-    Improver im(r, opt.rho0, opt.max_size);
-    im.set_classes(&balls, opt.theta_deg);
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
     ASSERT_TRUE(im.run());
     smoothed += im.stats().smoothed;
     const auto& P = im.points();
