@@ -23,7 +23,7 @@ import { fileURLToPath } from 'node:url';
 
 import { browserSkipReason, launchBrowser, CHROMIUM } from '../../tests/browser/lib/browser.mjs';
 import { serve } from '../../scripts/serve.mjs';
-import { browserPids, median, nativeRun, pairArgs, spread } from './wasm_pairs.mjs';
+import { descendantPids, median, nativeRun, pairArgs, spread } from './wasm_pairs.mjs';
 
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const { runs, calls, cli, pkgs, models } = pairArgs(process.argv.slice(2), {
@@ -34,10 +34,10 @@ if (reason) {
   process.exit(1);
 }
 
-// utime + stime (s) of every process of the browser.
+// utime + stime (s) of every process below this one: the browser's.
 function browserCpu() {
   let ticks = 0;
-  for (const pid of browserPids(CHROMIUM)) {
+  for (const pid of descendantPids()) {
     try {
       const s = readFileSync(`/proc/${pid}/stat`, 'utf8');
       const f = s.slice(s.lastIndexOf(')') + 2).split(' ');

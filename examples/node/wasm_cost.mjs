@@ -47,7 +47,7 @@ const args = process.argv.slice(2);
 
 // ---- The child: the calls of one package on one model, figures as JSON on stdout.
 if (args[0] === '--child') {
-  const [, pkg, model, worker, calls] = args;
+  const [, pkg, model, worker = '-', calls = '1'] = args;  // (a profile: --child PKG MODEL)
   const bytes = readFileSync(model);
   // utime + stime of the main thread, s (fields 14 and 15 of its stat line).
   const mainCpu = () => {

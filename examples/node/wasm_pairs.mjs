@@ -52,14 +52,26 @@ export const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length
 /** "median [min-max]" of xs, 3 decimals. */
 export const spread = (xs) => `${median(xs).toFixed(3)} [${Math.min(...xs).toFixed(3)}-${Math.max(...xs).toFixed(3)}]`;
 
-/** The PIDs (as strings) of the processes whose command line names the browser binary `chromium`, from /proc. */
-export function browserPids(chromium) {
-  return readdirSync('/proc').filter((d) => /^\d+$/.test(d)).filter((pid) => {
+/**
+ * The PIDs (as strings) of the processes below `root` (its children, theirs,
+ * ...), from the parent PIDs in /proc: e.g. the browser that playwright
+ * started from this process, and not another user's browser.
+ */
+export function descendantPids(root = process.pid) {
+  const parent = new Map();
+  for (const pid of readdirSync('/proc').filter((d) => /^\d+$/.test(d))) {
     try {
-      const cmd = readFileSync(`/proc/${pid}/cmdline`, 'utf8');
-      return cmd.startsWith(chromium) || cmd.includes('/chromium/chromium');
+      const s = readFileSync(`/proc/${pid}/stat`, 'utf8');
+      parent.set(pid, s.slice(s.lastIndexOf(')') + 2).split(' ')[1]);
     } catch {
-      return false;  // the process ended meanwhile
+      // the process ended meanwhile
     }
-  });
+  }
+  const out = [];
+  let level = [String(root)];
+  while (level.length) {
+    level = [...parent].filter(([, pp]) => level.includes(pp)).map(([pid]) => pid);
+    out.push(...level);
+  }
+  return out;
 }
