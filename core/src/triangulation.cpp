@@ -8,7 +8,12 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <memory>
+#include <mutex>
+#include <new>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -652,8 +657,137 @@ struct PlaneTraits : K {
   Side_of_oriented_circle_2 side_of_oriented_circle_2_object() const { return {metric}; }
 };
 
-using Vb2 = CGAL::Triangulation_vertex_base_with_info_2<int, PlaneTraits>;
-using Fb2 = CGAL::Triangulation_face_base_2<PlaneTraits>;
+}  // namespace
+
+// ---- The facets' planar triangulations' storage (issue 15, the peak memory) --
+// Beyond CGAL's defaults: the vertex and face blocks of every planar
+// triangulation come from one pool of 1 MB chunks instead of the heap. CGAL's
+// Compact_container allocates a block of 16, 32, 48, ... elements at a time,
+// so the many small facets of a model (fandisk.off) scatter their blocks of
+// a few KB among REFINE's other small blocks; freed after REFINE
+// (Subcomplex::freeze) they left holes that malloc_trim could not give back
+// and PUMP's large tables could not reuse (fandisk.off: 41 MB of blocks
+// freed, the resident memory down by 6 MB). From the pool, they are freed
+// as whole chunks (fandisk's peak RSS 185.0 -> 174.3 MB; the same meshes). Contract: a block is never reused before
+// every block is freed (Compact_container frees its blocks only when it is
+// cleared or destroyed, which PlanarDelaunay does only in its destructor);
+// when the last block is freed every chunk goes back to the heap. One pool
+// for the process, behind a mutex (blocks are allocated a few hundred times
+// per facet at most).
+namespace planar_pool {
+
+class Pool {
+ public:
+  // Never destroyed, so that a triangulation freed during the program's
+  // exit still finds it.
+  static Pool& get() {
+    static Pool* const pool = new Pool;
+    return *pool;
+  }
+  void* allocate(std::size_t bytes) {
+    bytes = (bytes + kAlign - 1) / kAlign * kAlign;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (chunks_.size() == chunks_.capacity()) chunks_.reserve(2 * chunks_.size() + 16);  // no push_back below throws
+    void* p;
+    if (bytes > kChunk / 4) {  // a large block: a chunk of its own
+      p = take(bytes);
+      chunks_.push_back(p);
+      bytes_ += bytes;
+    } else {
+      if (bytes > std::size_t(end_ - next_)) {
+        next_ = static_cast<char*>(take(kChunk));
+        end_ = next_ + kChunk;
+        chunks_.push_back(next_);
+        bytes_ += kChunk;
+      }
+      p = next_;
+      next_ += bytes;
+    }
+    ++live_;
+    return p;
+  }
+  std::size_t bytes() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return bytes_;
+  }
+  void deallocate() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (--live_ > 0) return;
+    for (void* c : chunks_) ::operator delete(c);
+    std::vector<void*>().swap(chunks_);
+    next_ = end_ = nullptr;
+    bytes_ = 0;
+  }
+
+ private:
+  static constexpr std::size_t kChunk = std::size_t(1) << 20;
+  static constexpr std::size_t kAlign = alignof(std::max_align_t);
+  // The chunks by ::operator new, so that a count of the C++ heap
+  // (tests/benchmark/heap_phases.cpp) sees them.
+  static void* take(std::size_t bytes) { return ::operator new(bytes); }
+  std::mutex mutex_;
+  std::vector<void*> chunks_;
+  char* next_ = nullptr;
+  char* end_ = nullptr;
+  std::size_t live_ = 0;   ///< blocks handed out and not yet freed
+  std::size_t bytes_ = 0;  ///< the chunks' bytes
+};
+
+/// A vertex or face base B of the planar triangulation whose blocks
+/// std::allocator (specialised below) takes from the pool: B itself, as a
+/// type of this program's.
+template <class B>
+struct Pooled : B {
+  using B::B;
+  template <class TDS2>
+  struct Rebind_TDS {
+    using Other = Pooled<typename B::template Rebind_TDS<TDS2>::Other>;
+  };
+};
+
+}  // namespace planar_pool
+
+std::size_t planar_pool_bytes() { return planar_pool::Pool::get().bytes(); }
+
+}  // namespace wqmesh
+
+/// The allocator CGAL's Compact_container takes for the pooled vertex and
+/// face types (std::allocator, specialised for a program-defined type).
+template <class B>
+class std::allocator<wqmesh::planar_pool::Pooled<B>> {
+ public:
+  using value_type = wqmesh::planar_pool::Pooled<B>;
+  using size_type = std::size_t;
+  using difference_type = std::ptrdiff_t;
+  using propagate_on_container_move_assignment = std::true_type;
+  using is_always_equal = std::true_type;
+  allocator() noexcept = default;
+  template <class U>
+  allocator(const std::allocator<U>&) noexcept {}
+  value_type* allocate(std::size_t n) {
+    if (n > std::numeric_limits<std::size_t>::max() / sizeof(value_type)) throw std::bad_array_new_length();
+    return static_cast<value_type*>(wqmesh::planar_pool::Pool::get().allocate(n * sizeof(value_type)));
+  }
+  void deallocate(value_type*, std::size_t) noexcept { wqmesh::planar_pool::Pool::get().deallocate(); }
+  // What libstdc++'s allocator_traits<std::allocator<T>> calls directly.
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  void destroy(U* p) {
+    p->~U();
+  }
+  std::size_t max_size() const noexcept { return std::numeric_limits<std::size_t>::max() / sizeof(value_type); }
+  friend bool operator==(const allocator&, const allocator&) noexcept { return true; }
+  friend bool operator!=(const allocator&, const allocator&) noexcept { return false; }
+};
+
+namespace wqmesh {
+namespace {
+
+using Vb2 = planar_pool::Pooled<CGAL::Triangulation_vertex_base_with_info_2<int, PlaneTraits>>;
+using Fb2 = planar_pool::Pooled<CGAL::Triangulation_face_base_2<PlaneTraits>>;
 using Tds2 = CGAL::Triangulation_data_structure_2<Vb2, Fb2>;
 using Dt2 = CGAL::Delaunay_triangulation_2<PlaneTraits, Tds2>;
 

@@ -182,6 +182,12 @@ class RegularTriangulation {
 /// inserted is a vertex whatever its rounding off the plane (a point is never
 /// hidden; issue 10: the former lift by the squared distance to the plane
 /// hid rounded points and a star walk over a hidden vertex never ended).
+/// The bytes of the pool that holds every PlanarDelaunay's vertex and face
+/// blocks (issue 15, the peak memory; see triangulation.cpp): 0 when no
+/// PlanarDelaunay holds a block, since the pool gives every chunk back when
+/// the last block is freed.
+std::size_t planar_pool_bytes();
+
 class PlanarDelaunay {
  public:
   PlanarDelaunay();

@@ -87,9 +87,15 @@ long long high_water_bytes() {
 
 std::atomic<int> g_phase{-1};
 std::atomic<bool> g_sampling{true};
+/// Milliseconds since the run's start, and those of the last progress call.
+const auto g_t0 = std::chrono::steady_clock::now();
+long long now_ms() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - g_t0).count();
+}
+std::atomic<long long> g_last_call_ms{0};
 /// What the sampler saw at the largest RSS.
 struct RssPeak {
-  long long rss = 0, live = 0, arena = 0, free_in_arena = 0, mmapped = 0;
+  long long rss = 0, live = 0, arena = 0, free_in_arena = 0, mmapped = 0, ms = 0, last_call_ms = 0;
   int phase = -1;
 };
 
@@ -100,6 +106,8 @@ void sample(RssPeak* peak) {
       peak->rss = rss;
       peak->live = g_live.load();
       peak->phase = g_phase.load();
+      peak->ms = now_ms();
+      peak->last_call_ms = g_last_call_ms.load();
       // mallinfo2 walks the free lists: only when the peak grew by 1 MB.
       static long long last = 0;
       if (rss > last + (1 << 20)) {
@@ -161,7 +169,7 @@ int main(int argc, char** argv) {
     }
     struct Span {
       std::string phase;
-      long long start, peak, hwm;
+      long long start, peak, hwm, rss;
     };
     std::vector<Span> spans;
     spans.reserve(16);
@@ -176,16 +184,19 @@ int main(int argc, char** argv) {
       if (spans.empty() || spans.back().phase != name) {
         close();
         g_peak = g_live.load();
-        spans.push_back({name, g_live.load(), 0, 0});
+        spans.push_back({name, g_live.load(), 0, 0, resident_bytes()});
         g_phase = static_cast<int>(spans.size()) - 1;
       }
+      g_last_call_ms = now_ms();
       return true;
     });
     close();
     // What `wqmesh mesh -o M.mesh --stats S` makes after the run.
     g_peak = g_live.load();
-    spans.push_back({"output", g_live.load(), 0, 0});
+    spans.push_back({"output", g_live.load(), 0, 0, resident_bytes()});
     g_phase = static_cast<int>(spans.size()) - 1;
+    const long long run_end_ms = now_ms();
+    g_last_call_ms = run_end_ms;
     if (result.conforming()) {
       std::ofstream sink("/dev/null", std::ios::binary);
       result.write(sink, wqmesh::OutputFormat::medit);
@@ -205,8 +216,11 @@ int main(int argc, char** argv) {
     std::printf("model %s: %zu tets, %zu vertices; heap before the run %.1f MB\n", argv[1], tets,
                 result.mesh().vertices.size(), mb(base));
     for (const Span& s : spans)
-      std::printf("  %-10s at its start %8.1f MB %6.0f B/tet   peak %8.1f MB %6.0f B/tet   VmHWM at its end %8.1f MB\n",
-                  s.phase.c_str(), mb(s.start - base), per(s.start), mb(s.peak - base), per(s.peak), mb(s.hwm));
+      std::printf(
+          "  %-10s at its start %8.1f MB %6.0f B/tet (RSS %7.1f MB)   peak %8.1f MB %6.0f B/tet   VmHWM at its end "
+          "%8.1f "
+          "MB\n",
+          s.phase.c_str(), mb(s.start - base), per(s.start), mb(s.rss), mb(s.peak - base), per(s.peak), mb(s.hwm));
     std::printf("  result held after the run %.1f MB %.0f B/tet\n", mb(after - base), per(after));
     std::printf("peak %.1f MB %.0f B/tet in %s\n", mb(top - base), per(top), where.c_str());
     std::printf("peak RSS (VmHWM) %.1f MB %.0f B/tet\n", mb(spans.back().hwm), per(spans.back().hwm + base));
@@ -214,6 +228,8 @@ int main(int argc, char** argv) {
         "largest RSS sampled %.1f MB in %s: live heap %.1f MB; malloc: arena %.1f MB (%.1f free), mmapped %.1f MB\n",
         mb(rss.rss), rss.phase >= 0 ? spans[rss.phase].phase.c_str() : "?", mb(rss.live - base), mb(rss.arena),
         mb(rss.free_in_arena), mb(rss.mmapped));
+    std::printf("  at %.2f s, %.2f s after the last progress call (the run ended at %.2f s)\n", rss.ms / 1e3,
+                (rss.ms - rss.last_call_ms) / 1e3, run_end_ms / 1e3);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

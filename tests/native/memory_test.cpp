@@ -5,12 +5,13 @@
 // classify_tets) gives the same result as the whole extraction, and so does
 // a run whose subcomplex was frozen after REFINE; the labels kept in the
 // cells are the cell graph's; PUMP's compact label table answers as a map
-// does.
+// does; the planar triangulations' pool is emptied with the last of them.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 #include <malloc.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@
 #include "mesher/extract.h"
 #include "mesher/mesher.h"
 #include "mesher/pump.h"
+#include "triangulation.h"
 #include "wqmesh/mesher.h"
 
 namespace wqmesh {
@@ -291,6 +293,49 @@ TEST(Memory, TheTriangulationIsFreedBeforeTheImprovementPhase) {
   EXPECT_LT(at_improve - before, after - before)
       << "at the improvement phase's start the run held " << at_improve - before << " bytes, the finished result "
       << after - before << ": the mesher's pieces or the old measures were not freed";
+}
+
+// The facets' planar triangulations' pool (triangulation.cpp): a
+// triangulation built while another's blocks were freed is the same as one
+// built alone (no block handed out twice), the pool holds chunks while a
+// triangulation lives and none once the last is gone, and a run's freeze
+// after REFINE (Subcomplex::freeze) gives every chunk back.
+TEST(Memory, PlanarTriangulationsPoolIsEmptiedWithTheLastTriangulation) {
+  ASSERT_EQ(planar_pool_bytes(), 0u) << "a planar triangulation outlived its test";
+  const auto build = [](PlanarDelaunay& d, int n, double shift) {
+    d.set_plane({0, 0, 1});
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) d.insert({i + 0.37 * j * j / n + shift, j + 0.21 * i * i / n, 0}, i * n + j);
+  };
+  std::vector<std::array<int, 3>> alone;
+  {
+    PlanarDelaunay d;
+    build(d, 40, 0);
+    alone = d.triangles();
+    EXPECT_GT(planar_pool_bytes(), 0u);
+  }
+  EXPECT_EQ(planar_pool_bytes(), 0u);
+  {
+    auto first = std::make_unique<PlanarDelaunay>();
+    PlanarDelaunay other;
+    build(*first, 30, 0.5);
+    build(other, 25, 0.25);
+    const std::size_t held = planar_pool_bytes();
+    first.reset();  // its blocks stay in the pool while `other` lives
+    EXPECT_EQ(planar_pool_bytes(), held);
+    PlanarDelaunay again;
+    build(again, 40, 0);
+    EXPECT_EQ(again.triangles(), alone);
+    EXPECT_GT(other.triangles().size(), 2u * 24 * 24 - 1);
+  }
+  EXPECT_EQ(planar_pool_bytes(), 0u);
+
+  const LoadedModel s("spike.off");
+  mesher::Mesher m(s.dom, s.o, s.none);
+  refine(m);
+  EXPECT_GT(planar_pool_bytes(), 0u);
+  m.freeze_subcomplex();
+  EXPECT_EQ(planar_pool_bytes(), 0u);
 }
 
 // PUMP's CellLabels (open-addressing tables) answers every look-up as a
