@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -668,12 +669,14 @@ struct PlaneTraits : K {
 // (Subcomplex::freeze) they left holes that malloc_trim could not give back
 // and PUMP's large tables could not reuse (fandisk.off: 41 MB of blocks
 // freed, the resident memory down by 6 MB). From the pool, they are freed
-// as whole chunks (fandisk's peak RSS 185.0 -> 174.3 MB; the same meshes). Contract: a block is never reused before
-// every block is freed (Compact_container frees its blocks only when it is
-// cleared or destroyed, which PlanarDelaunay does only in its destructor);
-// when the last block is freed every chunk goes back to the heap. One pool
-// for the process, behind a mutex (blocks are allocated a few hundred times
-// per facet at most).
+// as whole chunks (fandisk's peak RSS 185.0 -> 163.1 MB; the same meshes).
+// Contract: a freed block is reused only by a block of the same size, and
+// when the last block is freed every chunk goes back to the heap
+// (Compact_container frees its blocks only when it is cleared or destroyed,
+// and allocates the same sequence of sizes in every triangulation, so the
+// blocks of a triangulation freed while others live serve the next ones).
+// One pool for the process, behind a mutex (a block is allocated per 16
+// to a few thousand vertices or faces).
 namespace planar_pool {
 
 class Pool {
@@ -689,7 +692,10 @@ class Pool {
     std::lock_guard<std::mutex> lock(mutex_);
     if (chunks_.size() == chunks_.capacity()) chunks_.reserve(2 * chunks_.size() + 16);  // no push_back below throws
     void* p;
-    if (bytes > kChunk / 4) {  // a large block: a chunk of its own
+    if (void*& head = free_[bytes]) {  // a freed block of this size
+      p = head;
+      head = *static_cast<void**>(p);
+    } else if (bytes > kChunk / 4) {  // a large block: a chunk of its own
       p = take(bytes);
       chunks_.push_back(p);
       bytes_ += bytes;
@@ -710,11 +716,18 @@ class Pool {
     std::lock_guard<std::mutex> lock(mutex_);
     return bytes_;
   }
-  void deallocate() {
+  void deallocate(void* p, std::size_t bytes) {
+    bytes = (bytes + kAlign - 1) / kAlign * kAlign;
     std::lock_guard<std::mutex> lock(mutex_);
-    if (--live_ > 0) return;
+    if (--live_ > 0) {
+      void*& head = free_[bytes];
+      *static_cast<void**>(p) = head;
+      head = p;
+      return;
+    }
     for (void* c : chunks_) ::operator delete(c);
     std::vector<void*>().swap(chunks_);
+    free_.clear();
     next_ = end_ = nullptr;
     bytes_ = 0;
   }
@@ -727,6 +740,11 @@ class Pool {
   static void* take(std::size_t bytes) { return ::operator new(bytes); }
   std::mutex mutex_;
   std::vector<void*> chunks_;
+  /// Freed blocks by size, each list linked through the blocks' first
+  /// bytes: reused by the next block of that size (a triangulation replaced
+  /// while others live, as PlanarDelaunay::set_plane replaces the empty one
+  /// it starts with, leaves its first blocks here).
+  std::map<std::size_t, void*> free_;
   char* next_ = nullptr;
   char* end_ = nullptr;
   std::size_t live_ = 0;   ///< blocks handed out and not yet freed
@@ -768,7 +786,9 @@ class std::allocator<wqmesh::planar_pool::Pooled<B>> {
     if (n > std::numeric_limits<std::size_t>::max() / sizeof(value_type)) throw std::bad_array_new_length();
     return static_cast<value_type*>(wqmesh::planar_pool::Pool::get().allocate(n * sizeof(value_type)));
   }
-  void deallocate(value_type*, std::size_t) noexcept { wqmesh::planar_pool::Pool::get().deallocate(); }
+  void deallocate(value_type* p, std::size_t n) noexcept {
+    wqmesh::planar_pool::Pool::get().deallocate(p, n * sizeof(value_type));
+  }
   // What libstdc++'s allocator_traits<std::allocator<T>> calls directly.
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {

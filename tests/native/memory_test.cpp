@@ -297,9 +297,10 @@ TEST(Memory, TheTriangulationIsFreedBeforeTheImprovementPhase) {
 
 // The facets' planar triangulations' pool (triangulation.cpp): a
 // triangulation built while another's blocks were freed is the same as one
-// built alone (no block handed out twice), the pool holds chunks while a
-// triangulation lives and none once the last is gone, and a run's freeze
-// after REFINE (Subcomplex::freeze) gives every chunk back.
+// built alone (no block handed out twice), the freed blocks serve a
+// triangulation of the same size without a new chunk, the pool holds chunks
+// while a triangulation lives and none once the last is gone, and a run's
+// freeze after REFINE (Subcomplex::freeze) gives every chunk back.
 TEST(Memory, PlanarTriangulationsPoolIsEmptiedWithTheLastTriangulation) {
   ASSERT_EQ(planar_pool_bytes(), 0u) << "a planar triangulation outlived its test";
   const auto build = [](PlanarDelaunay& d, int n, double shift) {
@@ -320,9 +321,16 @@ TEST(Memory, PlanarTriangulationsPoolIsEmptiedWithTheLastTriangulation) {
     PlanarDelaunay other;
     build(*first, 30, 0.5);
     build(other, 25, 0.25);
+    const std::vector<std::array<int, 3>> first_triangles = first->triangles();
     const std::size_t held = planar_pool_bytes();
     first.reset();  // its blocks stay in the pool while `other` lives
     EXPECT_EQ(planar_pool_bytes(), held);
+    {
+      PlanarDelaunay same;  // the same sizes of blocks: all of them reused
+      build(same, 30, 0.5);
+      EXPECT_EQ(same.triangles(), first_triangles);
+      EXPECT_EQ(planar_pool_bytes(), held);
+    }
     PlanarDelaunay again;
     build(again, 40, 0);
     EXPECT_EQ(again.triangles(), alone);
