@@ -1229,6 +1229,61 @@ TEST(Improve, EveryVertexsShortestEdgeIsKeptCurrentThroughThePhase) {
   EXPECT_GT(smoothed, 0u);  // the moves whose upkeep this checks happened
 }
 
+// The L_v upkeep after replace() (h4, issue 15: learn() reads a vertex's
+// star again only when its shortest edge lay on the old tets): after every
+// accepted flip, contraction and insertion, each vertex's L_v^2 is the
+// shortest edge at it of the live tets, recomputed here. A stale value right
+// after a change (which a later change at the vertex could hide from the
+// test above) shows here.
+TEST(Improve, EveryVertexsShortestEdgeIsCurrentAfterEachChange) {
+  const auto files = models();
+  ASSERT_FALSE(files.empty());
+  std::size_t changes = 0, contractions = 0, inserted = 0;
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const invariants::Input in = invariants::load(f);
+    MeshOptions opt;
+    opt.improve = false;
+    MeshResult r = mesh_polyhedron(in.plc, in.analysis, opt);
+    const mesher::ProtectingBalls balls = index_of(r.protecting_balls);
+    Improver im(r, opt.rho0, opt.max_size);
+    im.set_classes(&balls, opt.theta_deg);
+    const auto expect_current = [&](const char* what) {
+      const auto& P = im.points();
+      std::vector<double> l2(P.size(), HUGE_VAL);
+      for (std::size_t t = 0; t < im.tets().size(); ++t) {
+        if (!im.alive(int(t))) continue;
+        const auto& T = im.tets()[t];
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j)
+            if (i != j) l2[T[i]] = std::min(l2[T[i]], geometry::dist2(P[T[i]], P[T[j]]));
+      }
+      for (std::size_t v = 0; v < P.size(); ++v)
+        if (l2[v] < HUGE_VAL) ASSERT_EQ(im.shortest_edge2(int(v)), l2[v]) << what << ", vertex " << v;
+    };
+    const std::size_t tets = im.tets().size();
+    for (std::size_t t = 0; t < tets && !HasFatalFailure(); ++t) {
+      if (!im.alive(int(t))) continue;
+      if (im.improve_tet(int(t))) {
+        ++changes;
+        expect_current("after a flip");
+      } else if (im.quality(int(t)) < 0.17 && im.insert(int(t))) {  // below about 10 degrees
+        ++inserted;
+        expect_current("after an insertion");
+      }
+    }
+    for (std::size_t v = 0; v < im.points().size() && !HasFatalFailure(); ++v)
+      if (im.contract_vertex(int(v))) {
+        ++contractions;
+        expect_current("after a contraction");
+      }
+  }
+  // The three kinds of change whose upkeep this checks happened.
+  EXPECT_GT(changes, 0u);
+  EXPECT_GT(contractions, 0u);
+  EXPECT_GT(inserted, 0u);
+}
+
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {
   const auto files = models();
   ASSERT_FALSE(files.empty());
