@@ -1197,6 +1197,22 @@ TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {
   }
 }
 
+/// Every vertex's L_v^2 in `im` equals the shortest edge at it of the live
+/// tets, recomputed from them (`what` names the moment in a failure).
+void expect_shortest_edges_current(const Improver& im, const char* what) {
+  const auto& P = im.points();
+  std::vector<double> l2(P.size(), HUGE_VAL);
+  for (std::size_t t = 0; t < im.tets().size(); ++t) {
+    if (!im.alive(int(t))) continue;
+    const auto& T = im.tets()[t];
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (i != j) l2[T[i]] = std::min(l2[T[i]], geometry::dist2(P[T[i]], P[T[j]]));
+  }
+  for (std::size_t v = 0; v < P.size(); ++v)
+    if (l2[v] < HUGE_VAL) ASSERT_EQ(im.shortest_edge2(int(v)), l2[v]) << what << ", vertex " << v;
+}
+
 TEST(Improve, EveryVertexsShortestEdgeIsKeptCurrentThroughThePhase) {
   // The class guard's L_v^2 after the whole phase is the shortest edge at v
   // of the live tets, recomputed here (after a smoothing step the Improver
@@ -1214,17 +1230,7 @@ TEST(Improve, EveryVertexsShortestEdgeIsKeptCurrentThroughThePhase) {
     Improver& im = *run->im;
     ASSERT_TRUE(im.run());
     smoothed += im.stats().smoothed;
-    const auto& P = im.points();
-    std::vector<double> l2(P.size(), HUGE_VAL);
-    for (std::size_t t = 0; t < im.tets().size(); ++t) {
-      if (!im.alive(int(t))) continue;
-      const auto& T = im.tets()[t];
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-          if (i != j) l2[T[i]] = std::min(l2[T[i]], geometry::dist2(P[T[i]], P[T[j]]));
-    }
-    for (std::size_t v = 0; v < P.size(); ++v)
-      if (l2[v] < HUGE_VAL) ASSERT_EQ(im.shortest_edge2(int(v)), l2[v]) << "vertex " << v;
+    expect_shortest_edges_current(im, "after the phase");
   }
   EXPECT_GT(smoothed, 0u);  // the moves whose upkeep this checks happened
 }
@@ -1241,41 +1247,23 @@ TEST(Improve, EveryVertexsShortestEdgeIsCurrentAfterEachChange) {
   std::size_t changes = 0, contractions = 0, inserted = 0;
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const invariants::Input in = invariants::load(f);
-    MeshOptions opt;
-    opt.improve = false;
-    MeshResult r = mesh_polyhedron(in.plc, in.analysis, opt);
-    const mesher::ProtectingBalls balls = index_of(r.protecting_balls);
-    Improver im(r, opt.rho0, opt.max_size);
-    im.set_classes(&balls, opt.theta_deg);
-    const auto expect_current = [&](const char* what) {
-      const auto& P = im.points();
-      std::vector<double> l2(P.size(), HUGE_VAL);
-      for (std::size_t t = 0; t < im.tets().size(); ++t) {
-        if (!im.alive(int(t))) continue;
-        const auto& T = im.tets()[t];
-        for (int i = 0; i < 4; ++i)
-          for (int j = 0; j < 4; ++j)
-            if (i != j) l2[T[i]] = std::min(l2[T[i]], geometry::dist2(P[T[i]], P[T[j]]));
-      }
-      for (std::size_t v = 0; v < P.size(); ++v)
-        if (l2[v] < HUGE_VAL) ASSERT_EQ(im.shortest_edge2(int(v)), l2[v]) << what << ", vertex " << v;
-    };
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
     const std::size_t tets = im.tets().size();
     for (std::size_t t = 0; t < tets && !HasFatalFailure(); ++t) {
       if (!im.alive(int(t))) continue;
       if (im.improve_tet(int(t))) {
         ++changes;
-        expect_current("after a flip");
+        expect_shortest_edges_current(im, "after a flip");
       } else if (im.quality(int(t)) < 0.17 && im.insert(int(t))) {  // below about 10 degrees
         ++inserted;
-        expect_current("after an insertion");
+        expect_shortest_edges_current(im, "after an insertion");
       }
     }
     for (std::size_t v = 0; v < im.points().size() && !HasFatalFailure(); ++v)
       if (im.contract_vertex(int(v))) {
         ++contractions;
-        expect_current("after a contraction");
+        expect_shortest_edges_current(im, "after a contraction");
       }
   }
   // The three kinds of change whose upkeep this checks happened.
