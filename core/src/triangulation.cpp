@@ -248,7 +248,35 @@ struct RegularTriangulation::Impl {
   // Inserts a weighted point; returns the CGAL handle (null when hidden), or
   // the existing vertex at the same position. Throws if the insertion hid
   // an existing vertex (outside the contract of WQMESH's weights).
+  // The last conflict zone asked for (conflict_cells), while the
+  // triangulation has not changed since; and the cavity of the last
+  // insertion when its zone was that one (last_cavity). Beyond the paper
+  // (issue 15, step 6).
+  mutable bool zone_valid = false;
+  mutable Point3 zone_p{};
+  mutable double zone_w = 0;
+  mutable std::vector<Tet> zone;
+  bool cavity_valid = false;
+  std::vector<Tet> cavity;
+  void remember_zone(const Point3& p, double w, const std::vector<Tet>& out) const {
+    zone_valid = !out.empty();
+    zone_p = p;
+    zone_w = w;
+    zone = out;
+  }
+  // Every change of the triangulation goes through here (or through
+  // forget_zone first): a kept zone is then stale.
+  void forget_zone() {
+    zone_valid = false;
+    cavity_valid = false;
+  }
+
   Rt::Vertex_handle insert_point(const Point3& p, double w, Rt::Cell_handle start, bool& existed) {
+    // The zone kept for this very point and weight is the set of cells the
+    // insertion destroys (the same exact conflict test), if it inserts.
+    const bool known = zone_valid && zone_p == p && zone_w == w;
+    zone_valid = false;
+    cavity_valid = false;
     const WPoint wp(BPoint(p[0], p[1], p[2]), w);
     Rt::Locate_type lt;
     int li = 0, lj = 0;
@@ -263,6 +291,10 @@ struct RegularTriangulation::Impl {
     if (v == Rt::Vertex_handle()) return v;
     if (rt.number_of_vertices() != before + 1)
       throw std::logic_error("RegularTriangulation: a weighted insertion hid an existing vertex");
+    if (known) {
+      cavity.swap(zone);
+      cavity_valid = true;
+    }
     return v;
   }
 };
@@ -287,6 +319,7 @@ void RegularTriangulation::insert_all(const std::vector<Point3>& points) {
   std::vector<WPoint> wps;
   wps.reserve(points.size());
   for (const Point3& p : points) wps.emplace_back(BPoint(p[0], p[1], p[2]), 0.0);
+  impl_->forget_zone();
   impl_->rt.insert(wps.begin(), wps.end());
 }
 
@@ -297,6 +330,7 @@ bool RegularTriangulation::set_weight(int v, double w) {
   Rt::Vertex_handle neighbour;
   for (int i = 0; i < 4; ++i)
     if (near->vertex(i) != old && !impl_->rt.is_infinite(near->vertex(i))) neighbour = near->vertex(i);
+  impl_->forget_zone();
   impl_->rt.remove(old);
   const Rt::Cell_handle start = neighbour != Rt::Vertex_handle() ? neighbour->cell() : Rt::Cell_handle();
   bool existed = false;
@@ -442,10 +476,16 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   Rt::Locate_type lt;
   int li = 0, lj = 0;
   const Rt::Cell_handle c = impl_->rt.locate(wp, lt, li, lj, impl_->start_cell(hint));
+  impl_->zone_valid = false;
   if (lt == Rt::VERTEX) return;
   std::vector<Rt::Cell_handle> cells;
   impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
   for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
+  impl_->remember_zone(p, w, out);
+}
+
+const std::vector<Tet>* RegularTriangulation::last_cavity() const {
+  return impl_->cavity_valid ? &impl_->cavity : nullptr;
 }
 
 void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out,
@@ -461,6 +501,7 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
     std::vector<Rt::Cell_handle> cells;
     impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
     for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
+    impl_->remember_zone(p, w, out);
     return;
   }
   conflict_cells(p, w, hint, out);

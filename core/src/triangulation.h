@@ -118,6 +118,15 @@ class RegularTriangulation {
   /// conflicts with, without a point location (beyond the paper, issue 15:
   /// rule 6's circumcenter conflicts with its own tet); else as above.
   void conflict_cells(const Point3& p, double w, int hint, std::vector<Tet>& out, CellRef start) const;
+  /// The cells, finite or not, that the last insert() destroyed (its
+  /// cavity), when conflict_cells was last asked for that very point and
+  /// weight and the triangulation did not change in between: the same set,
+  /// as both use the same exact conflict test. nullptr when unknown (no such
+  /// query, or nothing inserted) and after any later change. Beyond the
+  /// paper (issue 15, step 6): the upkeep of a free insertion reads the
+  /// edges and triangles it changed from here instead of walking around the
+  /// new vertex's ring. Valid until the next change.
+  const std::vector<Tet>* last_cavity() const;
   /// The vertex nearest to p (power distance with the current weights).
   int nearest_vertex(const Point3& p, int hint = -1) const;
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -871,6 +872,84 @@ TEST(MesherSpeed, KeptOnPMarksAgreeWithTheVertexRecords) {
     EXPECT_GT(on, 0u);
     EXPECT_GT(free, 0u);
   }
+}
+
+// The upkeep of a free insertion in REFINE reads the features it may have
+// to split from the insertion's cavity (Queues::enqueue_from_cavity, issue
+// 15, step 6), not from the new vertex's ring. What that relies on, checked
+// after every insertion: a subsegment or subfacet that needs a split of rule
+// 4 or 5 after a free insertion of rule 6 and did not before it (encroached,
+// or a guarded subfacet gone from Del V) is an edge or triangle of a cell of
+// the cavity (RegularTriangulation::last_cavity); and the cavity is known for
+// every such insertion. The features needing a split are found afresh, from
+// every subsegment and subfacet.
+TEST(MesherSpeed, FreeInsertionsChangeOnlyTheFeaturesOfTheirCavity) {
+  const std::vector<std::string> files =
+      models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off", "spike.off", "edge_facet.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  std::size_t free_insertions = 0, new_needs = 0, cavity_features = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
+    const mesher::Subcomplex& sub = m.subcomplex();
+    auto needing = [&] {
+      std::set<std::vector<int>> out;  // {a, b} or {facet, a, b, c}, sorted vertices
+      for (const auto& [k, s] : sub.subsegments()) {
+        mesher::Subsegment fresh = s;
+        fresh.cell = nullptr;
+        if (sub.segment_encroached(fresh)) out.insert({std::min(s.a, s.b), std::max(s.a, s.b)});
+      }
+      for (const mesher::Subfacet& h : sub.subfacets())
+        if (sub.guarded(h) ? !sub.subfacet_present(h) : sub.subfacet_encroached(h)) {
+          const mesher::Tri t = mesher::sorted(h.v);
+          out.insert({h.facet, t[0], t[1], t[2]});
+        }
+      return out;
+    };
+    std::set<std::vector<int>> before;
+    m.inserter().observer = [&](const mesher::Insertion& ins, int rule, int id) {
+      if (id < 0) return;
+      const std::set<std::vector<int>> now = needing();
+      if (rule == 6 && ins.on == mesher::On::free) {
+        ++free_insertions;
+        const std::vector<Tet>* cavity = m.triangulation().last_cavity();
+        ASSERT_NE(cavity, nullptr) << "insertion " << id;
+        std::set<std::vector<int>> edges, tris;
+        for (Tet c : *cavity) {
+          std::sort(c.begin(), c.end());
+          for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j) edges.insert({c[i], c[j]});
+          for (int k = 0; k < 4; ++k) {
+            std::vector<int> t;
+            for (int i = 0; i < 4; ++i)
+              if (i != k) t.push_back(c[i]);
+            tris.insert(t);
+          }
+        }
+        for (const std::vector<int>& f : now) {
+          if (before.count(f)) continue;
+          ++new_needs;
+          if (f.size() == 2)
+            EXPECT_TRUE(edges.count(f)) << "subsegment " << f[0] << "-" << f[1] << " after insertion " << id;
+          else
+            EXPECT_TRUE(tris.count({f[1], f[2], f[3]}))
+                << "subfacet " << f[1] << " " << f[2] << " " << f[3] << " after insertion " << id;
+        }
+        for (const auto& [k, s] : sub.subsegments())
+          if (edges.count({std::min(s.a, s.b), std::max(s.a, s.b)})) ++cavity_features;
+      }
+      before = now;
+    };
+    m.initialize();
+    before = needing();
+    m.conform();
+    m.refine();
+  }
+  EXPECT_GT(free_insertions, 100u);
+  EXPECT_GT(cavity_features, 0u);  // the cavities do reach the boundary
+  std::cout << "free insertions " << free_insertions << ", features needing a split after one " << new_needs
+            << ", subsegments among the cavities' edges " << cavity_features << "\n";
 }
 
 }  // namespace

@@ -265,6 +265,75 @@ TEST(Triangulation, ConflictCellsFromAStartCellAreThoseOfThePointLocation) {
   EXPECT_GT(checked, 50);
 }
 
+TEST(Triangulation, LastCavityIsTheSetOfCellsTheInsertionDestroyed) {
+  // last_cavity (issue 15, step 6): after conflict_cells of a point and its
+  // insertion, the cells the insertion destroyed, computed afresh as the
+  // cells before minus the cells after (the infinite ones included through
+  // their finite triangles' neighbours: compared on the finite cells); and
+  // nullptr when the zone asked for was another point's, or after any other
+  // change.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  RegularTriangulation t;
+  for (int i = 0; i < 150; ++i) t.insert({u(rng), u(rng), u(rng)}, 0, i - 1);
+  auto sorted_cells = [](std::vector<Tet> v, bool finite_only) {
+    std::set<Tet> out;
+    for (Tet& c : v) {
+      if (finite_only && std::find(c.begin(), c.end(), kInfinite) != c.end()) continue;
+      std::sort(c.begin(), c.end());
+      out.insert(c);
+    }
+    return out;
+  };
+  std::vector<Tet> zone, cells;
+  std::vector<CellRef> refs;
+  int checked = 0, with_infinite = 0;
+  for (int i = 0; i < 120; ++i) {
+    // Inside the hull mostly, and now and then outside it (a cavity with
+    // infinite cells); every fifth point from a start cell, as rule 6 asks.
+    const double s = i % 7 == 0 ? 1.6 : 1.0;
+    const Point3 p{{s * u(rng) - (s - 1) / 2, s * u(rng) - (s - 1) / 2, s * u(rng) - (s - 1) / 2}};
+    t.finite_cells(cells, refs);
+    const std::set<Tet> before = sorted_cells(cells, true);
+    if (i % 5 == 0)
+      t.conflict_cells(p, 0, -1, zone, refs[i % refs.size()]);
+    else
+      t.conflict_cells(p, 0, i % 150, zone);
+    ASSERT_FALSE(zone.empty());
+    const int id = t.insert(p, 0, i % 150);
+    ASSERT_EQ(id, t.number_of_vertices() - 1);
+    const std::vector<Tet>* cavity = t.last_cavity();
+    ASSERT_NE(cavity, nullptr) << "point " << i;
+    EXPECT_EQ(sorted_cells(*cavity, false), sorted_cells(zone, false));
+    const std::set<Tet> after = sorted_cells(t.finite_cells(), true);
+    std::set<Tet> destroyed;
+    for (const Tet& c : before)
+      if (!after.count(c)) destroyed.insert(c);
+    EXPECT_EQ(sorted_cells(*cavity, true), destroyed) << "point " << i;
+    for (const Tet& c : *cavity)
+      if (std::find(c.begin(), c.end(), kInfinite) != c.end()) ++with_infinite;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 120);
+  EXPECT_GT(with_infinite, 0);
+  // Unknown: the zone asked for was another point's; nothing asked; a zone
+  // asked for before another change; a weight change.
+  t.conflict_cells({{0.5, 0.5, 0.5}}, 0, -1, zone);
+  t.insert({{0.25, 0.5, 0.5}});
+  EXPECT_EQ(t.last_cavity(), nullptr);
+  t.insert({{0.75, 0.5, 0.5}});
+  EXPECT_EQ(t.last_cavity(), nullptr);
+  t.conflict_cells({{0.5, 0.25, 0.5}}, 0, -1, zone);
+  t.insert({{0.5, 0.75, 0.5}});
+  t.insert({{0.5, 0.25, 0.5}});
+  EXPECT_EQ(t.last_cavity(), nullptr);
+  t.conflict_cells({{0.5, 0.5, 0.25}}, 0, -1, zone);
+  t.insert({{0.5, 0.5, 0.25}});
+  ASSERT_NE(t.last_cavity(), nullptr);
+  EXPECT_TRUE(t.set_weight(3, 1e-6));
+  EXPECT_EQ(t.last_cavity(), nullptr);
+}
+
 TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {
   RegularTriangulation t;
   std::mt19937 rng(3);

@@ -33,6 +33,11 @@ void Queues::fill(bool tets) {
 
 void Queues::enqueue_around(int v) {
   if (meter_.phase() == Phase::initialize) return;
+  if (meter_.phase() == Phase::refine && !sub_.on_p(v))
+    if (const std::vector<Tet>* cavity = tri_.last_cavity()) {
+      enqueue_from_cavity(v, *cavity);
+      return;
+    }
   // The star of v gives both its new cells and its neighbours. (The buffers
   // are members, kept from call to call: no allocation per insertion.)
   std::vector<Tet>& cells = star_;
@@ -149,6 +154,131 @@ void Queues::enqueue_around(int v) {
     for (std::size_t i = 0; i < cells.size(); ++i)
       if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end())
         tets_.push_back({cells[i], refs[i]});
+}
+
+void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
+  // Beyond the paper (issue 15, step 6): the upkeep of a free vertex v (rule
+  // 6's circumcenter, most of REFINE's insertions) from the cells its
+  // insertion destroyed, instead of the subsegments and facet stars of its
+  // whole ring. Why that queues every feature a rule may now have to split:
+  // - A subsegment or subfacet whose cells changed is an edge or triangle
+  //   of a destroyed cell (the cells around it are those holding it), with
+  //   every vertex on P: all of those are queued, so the record of the last
+  //   rule 4 test (Subsegment::queued_at) stays valid as enqueue_around
+  //   keeps it.
+  // - One v encroaches is too: when no feature was encroached by a vertex,
+  //   a point inside a feature's diametric ball conflicts with a cell
+  //   holding it (the pencil argument of Subcomplex::encroached_by_point).
+  // - A feature that stays in Del V and that v does not encroach needs no
+  //   new split (v, being free, adds no subfacet or subsegment).
+  // What enqueue_around also queued, the features with every vertex in the
+  // ring but outside the cavity, are unchanged by v; only a feature left
+  // needing a split before v (a split SPLITF refused) was tried again there.
+  std::vector<Tet>& cells = star_;
+  std::vector<CellRef>& refs = star_refs_;
+  tri_.incident_cells(v, cells, &refs);
+  meter_.poll(cells.size() + cavity.size());
+  std::vector<std::uint64_t>& edges = cavity_edges_;
+  std::vector<Tri>& tris = cavity_tris_;
+  edges.clear();
+  tris.clear();
+  for (const Tet& t : cavity) {
+    const bool on[4] = {sub_.on_p(t[0]), sub_.on_p(t[1]), sub_.on_p(t[2]), sub_.on_p(t[3])};
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (on[i] && on[j]) edges.push_back(edge_key(t[i], t[j]));
+    for (int k = 0; k < 4; ++k)
+      if (on[(k + 1) % 4] && on[(k + 2) % 4] && on[(k + 3) % 4])
+        tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
+  }
+  // The features are queued in the order enqueue_around's walk of the ring
+  // meets them (so that the rules split the same ones first): a subsegment
+  // ab (a < b) at a, in the order of subsegments_at(a); a subfacet at its
+  // smallest vertex x, by f's place in facets_of(x) and then the triangle's
+  // place in x's star in f (or, for a fan apex, along its edges to the ring
+  // vertices in id order).
+  if (!edges.empty()) {
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    auto& order = cavity_order_;
+    order.clear();
+    for (std::uint64_t k : edges) {
+      if (sub_.subsegments().find(k) == sub_.subsegments().end()) continue;
+      const int a = int(k >> 32);  // the smaller end
+      const std::vector<std::uint64_t>& at = sub_.subsegments_at(a);
+      const auto pos = std::find(at.begin(), at.end(), k) - at.begin();
+      order.push_back({{a, int(pos), 0}, order.size()});
+      cavity_keys_.push_back(k);
+    }
+    std::sort(order.begin(), order.end());
+    for (const auto& o : order) queue(cavity_keys_[o.second], sub_.subsegment(cavity_keys_[o.second]));
+    cavity_keys_.clear();
+  }
+  if (!tris.empty()) {
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    std::vector<int>& fs = fs_;
+    std::vector<Tri>& pair = pair_;
+    std::vector<int> f1, f2;
+    auto& order = cavity_order_;
+    order.clear();
+    std::vector<Subfacet>& found = cavity_subfacets_;
+    found.clear();
+    for (const Tri& t : tris) {
+      sub_.facets_of(t[0], fs);
+      if (fs.empty()) continue;
+      sub_.facets_of(t[1], f1);
+      sub_.facets_of(t[2], f2);
+      for (std::size_t fi = 0; fi < fs.size(); ++fi) {
+        const int f = fs[fi];
+        if (std::find(f1.begin(), f1.end(), f) == f1.end() || std::find(f2.begin(), f2.end(), f) == f2.end()) continue;
+        // The triangle as f's planar triangulation holds it (its rotation
+        // is the subfacet's, as the walk of enqueue_around gives it).
+        meter_.poll(1);
+        sub_.facet_triangulation(f).edge_triangles(t[0], t[1], pair);
+        for (const Tri& u : pair)
+          if ((u[0] == t[2] || u[1] == t[2] || u[2] == t[2]) && sub_.lies_in_facet(f, u)) {
+            order.push_back({{t[0], int(fi), 0}, found.size()});
+            found.push_back({f, u});
+          }
+      }
+    }
+    // The place in the star matters only between subfacets of one facet at
+    // one smallest vertex (rare: a cavity at the boundary holds one or two).
+    std::sort(order.begin(), order.end());
+    constexpr std::size_t kFan = 48;  // as in enqueue_around
+    std::vector<Tri>& around = around_;
+    for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+      if (order[i].first != order[i + 1].first) continue;
+      std::size_t j = i;
+      while (j < order.size() && order[j].first == order[i].first) ++j;
+      const int x = order[i].first[0], f = found[order[i].second].facet;
+      const bool star = sub_.facet_triangulation(f).incident_triangles(x, around, kFan);
+      for (std::size_t m = i; m < j; ++m) {
+        const Tri s = sorted(found[order[m].second].v);
+        int rank = 0;
+        if (star) {
+          meter_.poll(around.size());
+          for (const Tri& u : around) {
+            if (sorted(u) == s) break;
+            ++rank;
+          }
+        } else {
+          // A fan apex: met along its edge to the smaller other vertex
+          // (s[1]), in the order edge_triangles gives.
+          sub_.facet_triangulation(f).edge_triangles(x, s[1], pair);
+          rank = s[1] * 2;
+          if (!pair.empty() && sorted(pair[0]) != s) ++rank;
+        }
+        order[m].first[2] = rank;
+      }
+      std::sort(order.begin() + long(i), order.begin() + long(j));
+      i = j - 1;
+    }
+    for (const auto& o : order) subfacets_.push_back(found[o.second]);
+  }
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end()) tets_.push_back({cells[i], refs[i]});
 }
 
 bool Queues::process(Inserter& inserter, const Rule6& rule6) {

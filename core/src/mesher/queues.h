@@ -5,6 +5,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -76,6 +77,15 @@ class Queues {
   /// (== stamp_ for the vertices of the current ring).
   /// Queues subsegment s under its key k, noting when (Subsegment::queued_at).
   void queue(std::uint64_t k, const Subsegment& s);
+  /// enqueue_around for a free vertex v inserted in REFINE whose cavity (the
+  /// cells it destroyed) is known: the features are read from the cavity
+  /// instead of the ring (queues.cpp says why that suffices).
+  void enqueue_from_cavity(int v, const std::vector<Tet>& cavity);
+  std::vector<std::uint64_t> cavity_edges_;  ///< enqueue_from_cavity's buffers
+  std::vector<Tri> cavity_tris_;
+  std::vector<std::uint64_t> cavity_keys_;
+  std::vector<Subfacet> cavity_subfacets_;
+  std::vector<std::pair<std::array<int, 3>, std::size_t>> cavity_order_;  ///< (ring walk's order, index)
   std::vector<int> ring_;
   // enqueue_around's other buffers, kept from call to call (issue 15).
   std::vector<Tet> star_;
