@@ -459,6 +459,18 @@ bool RegularTriangulation::edge_ring(int a, int b, std::vector<int>& out, CellRe
   return true;
 }
 
+bool RegularTriangulation::is_edge(int a, int b, CellRef& cell) const {
+  const Rt::Vertex_handle va = impl_->handle(a), vb = impl_->handle(b);
+  const Rt::Cell_handle c = impl_->rt.dimension() == 3 ? impl_->cell_of(cell) : Rt::Cell_handle();
+  if (c != Rt::Cell_handle() && c->has_vertex(va) && c->has_vertex(vb)) return true;
+  cell = nullptr;
+  Rt::Cell_handle found;
+  int i, j;
+  if (!impl_->find_edge(va, vb, found, i, j)) return false;
+  if (impl_->rt.dimension() == 3) cell = static_cast<CellRef>(&*found);
+  return true;
+}
+
 bool RegularTriangulation::facet_cells(int a, int b, int c, Tet& first, Tet& second) const {
   Rt::Cell_handle cell;
   int i, j, k;

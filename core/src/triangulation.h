@@ -103,6 +103,11 @@ class RegularTriangulation {
   /// found by the walk and `cell` set to a cell holding it (nullptr when ab is
   /// no edge). Same answer and `out` as without the hint.
   bool edge_ring(int a, int b, std::vector<int>& out, CellRef& cell) const;
+  /// Whether ab is an edge, with `cell` the hint of edge_ring above (checked
+  /// in O(1); else the edge is found by the walk and `cell` set, nullptr when
+  /// ab is no edge). Same answer as is_edge(a, b); beyond the paper, issue
+  /// 15: Subcomplex::segment_encroached_update's presence test.
+  bool is_edge(int a, int b, CellRef& cell) const;
   /// The two cells sharing triangle abc (either may hold kInfinite), in no
   /// particular order (callers treat them alike). Returns false when abc is
   /// not a facet of the triangulation. Found by the edge test of ab (the

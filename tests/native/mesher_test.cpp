@@ -18,6 +18,7 @@
 #include "mesh_invariants.h"
 #include "mesher/extract.h"
 #include "mesher/mesher.h"
+#include "mesher/phases.h"
 #include "mesher/pump.h"
 #include "wqmesh/analysis.h"
 #include "wqmesh/input.h"
@@ -840,6 +841,96 @@ TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
     EXPECT_GT(insertions, 0u);
     EXPECT_GT(kept, 0u);
   }
+}
+
+// Subcomplex::segment_encroached_update (issue 15) answers from a
+// subsegment's record of its last test and the vertices inserted since: it
+// must say what a fresh full test says, for every subsegment with a record
+// (stale ones included), after every insertion of CONFORM and REFINE.
+TEST(MesherSpeed, UpdatedSubsegmentTestsAgreeWithAFreshTest) {
+  const std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
+    std::size_t updated = 0;
+    auto check = [&] {
+      const int n = m.triangulation().number_of_vertices();
+      for (const auto& [k, s] : m.subcomplex().subsegments()) {
+        if (s.tested_at == 0) continue;
+        // The short way is taken (a record saying "not encroached", recent
+        // enough): counted, so that the test cannot pass without it.
+        updated += !s.encroached && !s.in_ball && n - int(s.tested_at) <= mesher::Subcomplex::kUpdateScan;
+        mesher::Subsegment kept = s, fresh = s;
+        fresh.cell = nullptr;
+        ASSERT_EQ(m.subcomplex().segment_encroached_update(kept), m.subcomplex().segment_encroached(fresh))
+            << "subsegment " << s.a << "-" << s.b << " tested at " << s.tested_at << " of " << n;
+      }
+    };
+    m.inserter().observer = [&](const mesher::Insertion&, int, int id) {
+      if (id >= 0) check();
+    };
+    m.initialize();
+    m.conform();
+    check();
+    m.refine();
+    check();
+    EXPECT_GT(updated, 0u);
+  }
+}
+
+// mesher::nearest_neighbours (one pass over the cells; issue 15) gives every
+// vertex the N(v) of nearest_neighbour's star walk, bit for bit, after
+// CONFORM and after REFINE.
+TEST(MesherSpeed, NearestNeighboursOfAllVerticesAgreeWithEachVertexsWalk) {
+  const std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
+    auto check = [&] {
+      const RegularTriangulation& tri = m.triangulation();
+      std::vector<double> all;
+      ASSERT_TRUE(mesher::nearest_neighbours(tri, all));
+      ASSERT_EQ(all.size(), std::size_t(tri.number_of_vertices()));
+      ASSERT_EQ(all.size(), m.vertices().size());
+      for (int v = 0; v < tri.number_of_vertices(); ++v) {
+        ASSERT_EQ(all[v], mesher::nearest_neighbour(tri, v)) << "vertex " << v;
+        ASSERT_TRUE(std::isfinite(all[v]) && all[v] > 0) << "vertex " << v;
+      }
+    };
+    m.initialize();
+    m.conform();
+    check();
+    m.refine();
+    check();
+  }
+}
+
+// Rule 3's records (Conform::rule3_pass, issue 15) skip the test of a sharp
+// subsegment whose midpoint's conflict cells no insertion touched since its
+// last test found nothing: after CONFORM every record that would skip now
+// must agree with a fresh test, which finds nothing to split.
+TEST(MesherSpeed, Rule3RecordsAgreeWithAFreshTest) {
+  std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off", "spike.off"});
+  for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl", "wedge-1.off", "part.off"}))
+    files.push_back(f);
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  std::size_t skipped = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    mesher::Mesher& m = st.m;
+    m.initialize();
+    mesher::Conform c = m.make_conform();
+    c.run();
+    EXPECT_TRUE(c.rule3_records_hold());
+    skipped += c.rule3_skipped();
+    EXPECT_TRUE(m.subcomplex().conforms());
+  }
+  EXPECT_GT(skipped, 0u);  // some test was skipped: the records were used
 }
 
 // The byte per vertex behind Subcomplex::on_p (issue 15) says what the

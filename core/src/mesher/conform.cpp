@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "mesher/phases.h"
@@ -14,6 +15,26 @@ void Conform::run() {
   if (!queues_.process(ins_)) return;
   if (opt_.max_size > 0 && !split_long_sharp_subsegments()) return;
   // Rule 3 passes until one inserts nothing, at most Caps::kRule3Passes.
+  // Every insertion meanwhile (rule 3's and the rules 1-2 it sets off)
+  // marks the new vertex's neighbours (Rule3State::touched; see rule3_pass).
+  Rule3State& state = state_;
+  state = {};
+  const auto observer = ins_.observer;
+  // The caller's observer is back when this scope ends, however it ends.
+  struct Restore {
+    Inserter& ins;
+    const std::function<void(const Insertion&, int, int)>& observer;
+    ~Restore() { ins.observer = observer; }
+  } restore{ins_, observer};
+  std::vector<int> ring;
+  ins_.observer = [&](const Insertion& ins, int rule, int id) {
+    if (observer) observer(ins, rule, id);
+    if (id < 0) return;
+    if (state.touched.size() < std::size_t(tri_.number_of_vertices()))
+      state.touched.resize(tri_.number_of_vertices(), 0);
+    tri_.adjacent_vertices(id, ring);
+    for (int x : ring) state.touched[x] = std::max(state.touched[x], id);
+  };
   int passes = 0;
   while (!meter_.stopped() && passes < Caps::kRule3Passes && rule3_pass()) ++passes;
   if (passes == Caps::kRule3Passes) meter_.cap_reached();
@@ -28,45 +49,94 @@ std::vector<std::uint64_t> Conform::sharp_subsegment_keys() const {
   return keys;
 }
 
+bool Conform::rule3_unchanged(const Rule3Record& r) const {
+  for (int x : r.zone)
+    if (std::size_t(x) < state_.touched.size() && state_.touched[x] >= int(r.tested_at)) return false;
+  return true;
+}
+
+bool Conform::rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, std::vector<int>& zone) const {
+  std::vector<std::uint64_t> segs;
+  std::vector<Subfacet> facets;
+  const int ea = dom_.p.edges[s.edge].a, eb = dom_.p.edges[s.edge].b;
+  const Point3 m = midpoint(tri_.point(s.a), tri_.point(s.b));
+  sub_.encroached_by_point(m, s.a, segs, facets, nullptr, &zone);
+  auto disjoint_facet = [&](int f) { return !dom_.facet_has_vertex(f, ea) && !dom_.facet_has_vertex(f, eb); };
+  for (std::uint64_t g : segs) {
+    if (g == k) continue;
+    const Subsegment& gs = sub_.subsegment(g);
+    const bool disjoint = gs.sector >= 0
+                              ? disjoint_facet(sub_.sector(gs.sector).facet)
+                              : (gs.edge != s.edge && dom_.p.edges[gs.edge].a != ea && dom_.p.edges[gs.edge].a != eb &&
+                                 dom_.p.edges[gs.edge].b != ea && dom_.p.edges[gs.edge].b != eb);
+    if (disjoint) {
+      ins = sub_.splite(gs);
+      return true;
+    }
+  }
+  for (const Subfacet& h : facets)
+    if (disjoint_facet(h.facet)) {
+      ins = sub_.splitf(h);
+      return true;
+    }
+  return false;
+}
+
+bool Conform::rule3_records_hold() const {
+  std::vector<int> zone;
+  for (const auto& [k, r] : state_.records) {
+    const auto it = sub_.subsegments().find(k);
+    if (it == sub_.subsegments().end() || !rule3_unchanged(r)) continue;
+    Insertion ins;
+    if (rule3_test(k, it->second, ins, zone)) return false;
+  }
+  return true;
+}
+
 bool Conform::rule3_pass() {
   // Rule 3: the midpoint of a sharp subsegment s on edge e that encroaches a
   // subsegment or subfacet h, h and e in disjoint elements of P: split h.
+  //
+  // Beyond the paper (issue 15: every pass tested every sharp subsegment
+  // again, a third of CONFORM on mpi.off, whose passes insert a few points
+  // each): a subsegment whose last test found nothing is tested again only
+  // when an insertion since may have changed what its midpoint m sees. V
+  // only grows here (unweighted insertions, none hidden). The test reads the
+  // cells C(m) whose circumballs hold m (a connected set, from the cell
+  // holding m), their edges and triangles that are subsegments and
+  // subfacets, and fixed geometry. An insertion of v changes C(m) only if it
+  // destroys a cell of C(m) or a cell e across a face F of one (only then
+  // can m conflict with a new cell: the first new cell on a path in the new
+  // conflict set from the cell holding m is v joined to such an F), and the
+  // vertices of every destroyed cell become v's neighbours: so some vertex
+  // of C(m) gets a neighbour inserted after the test (Rule3State::touched,
+  // kept by run()'s observer). While C(m) is unchanged the features among
+  // its cells can only be lost (a split removes a subsegment, a facet's
+  // retriangulation removes triangles; every new subsegment and subfacet
+  // holds a new vertex), so the test still finds nothing: skipping it
+  // changes no answer, no insertion and no order.
+  Rule3State& state = state_;
   const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
   bool acted = false;
-  std::vector<std::uint64_t> segs;
-  std::vector<Subfacet> facets;
+  std::vector<int> zone;
   for (std::uint64_t k : keys) {
     meter_.step_done();
     if (!meter_.poll(1)) break;
     const auto it = sub_.subsegments().find(k);
     if (it == sub_.subsegments().end()) continue;
-    const Subsegment s = it->second;
-    const int ea = dom_.p.edges[s.edge].a, eb = dom_.p.edges[s.edge].b;
-    const Point3 m = midpoint(tri_.point(s.a), tri_.point(s.b));
-    sub_.encroached_by_point(m, s.a, segs, facets);
-    auto disjoint_facet = [&](int f) { return !dom_.facet_has_vertex(f, ea) && !dom_.facet_has_vertex(f, eb); };
-    Insertion ins;
-    bool found = false;
-    for (std::uint64_t g : segs) {
-      if (g == k) continue;
-      const Subsegment& gs = sub_.subsegment(g);
-      const bool disjoint =
-          gs.sector >= 0 ? disjoint_facet(sub_.sector(gs.sector).facet)
-                         : (gs.edge != s.edge && dom_.p.edges[gs.edge].a != ea && dom_.p.edges[gs.edge].a != eb &&
-                            dom_.p.edges[gs.edge].b != ea && dom_.p.edges[gs.edge].b != eb);
-      if (disjoint) {
-        ins = sub_.splite(gs);
-        found = true;
-        break;
+    const auto rec = state.records.find(k);
+    if (rec != state.records.end()) {
+      if (rule3_unchanged(rec->second)) {  // the same test would find nothing again
+        ++state.skipped;
+        continue;
       }
+      state.records.erase(rec);
     }
-    if (!found)
-      for (const Subfacet& h : facets)
-        if (disjoint_facet(h.facet)) {
-          ins = sub_.splitf(h);
-          found = true;
-          break;
-        }
+    const Subsegment s = it->second;
+    const std::uint32_t tested_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
+    Insertion ins;
+    const bool found = rule3_test(k, s, ins, zone);
+    if (!found) state.records[k] = {tested_at, zone};
     if (found && ins_.insert(ins, Rule::rule3_split_near_sharp_subsegment) >= 0) {
       acted = true;
       meter_.tick();

@@ -362,8 +362,8 @@ MeshResult Extract::mesh() {
   r.conforming = sub_.conforms();
   r.protecting_balls = balls_.all();
   if (nn_.size() != verts_.size()) {
-    std::vector<double> nn(verts_.size());
-    for (std::size_t v = 0; v < verts_.size(); ++v) nn[v] = nearest_neighbour(tri_, static_cast<int>(v));
+    std::vector<double> nn;
+    nearest_neighbours(tri_, nn);
     nn_.swap(nn);
   }
   // The output is in canonical order (canonical() above), so that it is the

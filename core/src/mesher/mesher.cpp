@@ -41,10 +41,12 @@ void Mesher::initialize() {
   Initialize(dom_, p.sub, p.queues, p.ins, meter_).run();
 }
 
-void Mesher::conform() {
+void Mesher::conform() { make_conform().run(); }
+
+Conform Mesher::make_conform() {
   meter_.set_phase(Phase::conform);
   Pieces& p = live();
-  Conform(dom_, opt_, p.tri, p.sub, p.queues, p.ins, meter_, balls_).run();
+  return Conform(dom_, opt_, p.tri, p.sub, p.queues, p.ins, meter_, balls_);
 }
 
 void Mesher::refine() {

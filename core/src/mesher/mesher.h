@@ -46,6 +46,7 @@
 namespace wqmesh::mesher {
 
 class Pump;
+class Conform;
 
 /// Inserts the points the rules decide into V, with the upkeep every
 /// insertion needs: the subcomplex (a split subsegment, the facets'
@@ -133,6 +134,9 @@ class Mesher {
   std::size_t count_qmesh_slivers();
   /// PUMP over this run's pieces (pump() runs it; tests drive it by hand).
   Pump make_pump();
+  /// CONFORM over this run's pieces, the meter in its phase (conform() runs
+  /// it; tests run it by hand to read its rule 3 records).
+  Conform make_conform();
 
   // ---- the pieces (all but domain, options, balls and meter: not after release()) ----
   const Domain& domain() const { return dom_; }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "mesher/domain.h"
@@ -53,10 +54,38 @@ class Conform {
         meter_(meter),
         balls_(balls) {}
   void run();
+  /// Tests' view of rule 3's records (rule3_pass) after run(): how many
+  /// tests they skipped, and whether every record still standing, whose
+  /// subsegment would be skipped now, agrees with a fresh test (it finds
+  /// nothing to split).
+  std::size_t rule3_skipped() const { return state_.skipped; }
+  bool rule3_records_hold() const;
 
  private:
+  /// What rule 3 found at a sharp subsegment's midpoint m when it found
+  /// nothing: V's size then and the vertices of the cells m conflicted with
+  /// (see rule3_pass).
+  struct Rule3Record {
+    std::uint32_t tested_at = 0;
+    std::vector<int> zone;
+  };
+  /// The rule 3 passes' state: the records by subsegment key, and for each
+  /// vertex the largest id of a vertex inserted next to it (0: none).
+  struct Rule3State {
+    std::unordered_map<std::uint64_t, Rule3Record> records;
+    std::vector<int> touched;
+    std::size_t skipped = 0;
+  };
+  /// Whether the record of subsegment k says its test would find nothing.
+  bool rule3_unchanged(const Rule3Record& r) const;
+  /// Rule 3's test at sharp subsegment s (key k): whether its midpoint
+  /// encroaches a feature in an element of P disjoint from s's edge, and
+  /// then the point to insert; `zone` gets the vertices of the midpoint's
+  /// conflict cells.
+  bool rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, std::vector<int>& zone) const;
   /// One pass of rule 3 over the sharp subsegments; whether it inserted.
   bool rule3_pass();
+  Rule3State state_;
   /// The keys of the sharp subsegments, in increasing order.
   std::vector<std::uint64_t> sharp_subsegment_keys() const;
   /// With max_size: splits sharp subsegments longer than 2/3 max_size before

@@ -37,6 +37,14 @@ bool orthosphere(const RegularTriangulation& tri, const Tet& t, Point3& z, doubl
 // No cell has a vertex id below kInfinite (-1): the key of an empty slot.
 constexpr int kNoKey = -2;
 
+namespace {
+// Key equality by its four ints (std::array's operator== was a call to
+// memcmp per probe: a fifth of PUMP on mpi.off; issue 15). Same answers.
+inline bool same_key(const TetKey& a, const TetKey& b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && a[3] == b[3];
+}
+}  // namespace
+
 void CellLabels::add_table(std::size_t n) {
   // Exactly 4/3 n slots (at least 16), not the next power of two, which held
   // up to twice as many (issue 15: 17 bytes a slot of every cell).
@@ -59,7 +67,7 @@ std::size_t CellLabels::Table::slot(const TetKey& t) const {
   const std::uint64_t h = (std::uint64_t(TetKeyHash()(t)) * 0x9E3779B97F4A7C15ull) >> 32;
   const std::size_t size = keys.size();
   std::size_t i = static_cast<std::size_t>((h * std::uint64_t(size)) >> 32);
-  while (keys[i] != t && keys[i][0] != kNoKey)
+  while (!same_key(keys[i], t) && keys[i][0] != kNoKey)
     if (++i == size) i = 0;
   return i;
 }
@@ -67,7 +75,7 @@ std::size_t CellLabels::Table::slot(const TetKey& t) const {
 const char* CellLabels::find(const TetKey& t) const {
   for (const Table& table : tables_) {
     const std::size_t i = table.slot(t);
-    if (table.keys[i] == t) return &table.labels[i];
+    if (same_key(table.keys[i], t)) return &table.labels[i];
   }
   return nullptr;
 }
@@ -75,7 +83,7 @@ const char* CellLabels::find(const TetKey& t) const {
 void CellLabels::set(const TetKey& t, char label) {
   for (Table& table : tables_) {
     const std::size_t i = table.slot(t);
-    if (table.keys[i] == t) {
+    if (same_key(table.keys[i], t)) {
       table.labels[i] = label;
       return;
     }
@@ -95,15 +103,9 @@ void Pump::prepare() {
   // of REFINE; it bounds the weights and does not change when they do.
   // A scan of the whole mesh: it polls, and stops early (meter_.stopped()) when
   // the run must stop; run() then does nothing more.
-  const std::size_t nv = verts_.size();
-  nn_.assign(nv, 0);
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!meter_.poll(1, false)) break;
-    nn_[v] = nearest_neighbour(tri_, static_cast<int>(v));
-  }
-  if (meter_.stopped()) return;
-  candidates_.clear();
   const auto poll = [&](std::size_t n) { return meter_.poll(n, false); };
+  if (!mesher::nearest_neighbours(tri_, nn_, poll) || meter_.stopped()) return;
+  candidates_.clear();
   if (cell_labels_) {
     // The labels in the cells (use_cell_labels): every cell's into the
     // table, the candidates from the inside ones.

@@ -331,7 +331,7 @@ void Queues::split_encroached_subsegment(Inserter& inserter, std::uint64_t k, Ru
   // (Subsegment::queued_at): the cells around it are the same.
   const Subsegment& s = it->second;
   if (s.tested_at == 0 || s.tested_at < s.queued_at) {
-    s.encroached = sub_.segment_encroached(s);
+    s.encroached = sub_.segment_encroached_update(s);
     s.tested_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
   }
   if (!s.encroached) return;

@@ -199,6 +199,30 @@ bool Subcomplex::segment_encroached(const Subsegment& e) const {
   return false;
 }
 
+bool Subcomplex::segment_encroached_update(const Subsegment& e) const {
+  // The ring of ab after insertions only is within its ring before them and
+  // the vertices inserted since: a new cell holding ab is a new vertex v
+  // joined to a face abx of the cavity's boundary, and abx was a face of a
+  // destroyed cell, which held ab, so x was in the ring. So when the last
+  // test found ab present with no vertex of its ring in its closed diametric
+  // ball, ab is encroached now iff it is missing or a vertex inserted since
+  // that is in its ring lies in the ball: with none of those in the ball
+  // (the common case, a distance each) the answer is "no" without the ring,
+  // whose circulation was most of CONFORM on mpi.off (a long subsegment
+  // beside a finely split edge has a ring of thousands of cells, tested
+  // again after every split nearby). Otherwise the full test: the same
+  // answer as segment_encroached in every case.
+  const int n = tri_.number_of_vertices();
+  if (e.in_ball) return false;
+  if (e.tested_at == 0 || e.encroached || n - static_cast<int>(e.tested_at) > kUpdateScan) return segment_encroached(e);
+  if (!tri_.is_edge(e.a, e.b, e.cell)) return true;  // missing: as segment_encroached
+  const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
+  const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
+  for (int x = static_cast<int>(e.tested_at); x < n; ++x)
+    if (verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b)) return segment_encroached(e);
+  return false;
+}
+
 bool Subcomplex::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }
 
 bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
@@ -216,7 +240,7 @@ bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
 }
 
 void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
-                                     std::vector<Subfacet>& facet_out, CellRef start) const {
+                                     std::vector<Subfacet>& facet_out, CellRef start, std::vector<int>* zone) const {
   // When no subsegment (subfacet) is encroached by a vertex, a point that
   // encroaches one conflicts with a cell incident to it: along the pencil of
   // spheres through its vertices the power of the point is affine, negative at
@@ -228,6 +252,14 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   // (The order of the cells does not matter: the edges and triangles are
   // sorted below.)
   tri_.conflict_cells(c, 0, hint, cells, start);
+  if (zone) {
+    zone->clear();
+    for (const Tet& t : cells)
+      for (int x : t)
+        if (x != kInfinite) zone->push_back(x);
+    std::sort(zone->begin(), zone->end());
+    zone->erase(std::unique(zone->begin(), zone->end()), zone->end());
+  }
   // Only the edges and triangles with every vertex on P can be subsegments
   // and subfacets (on_p): the others, most of a refined mesh's, are left out
   // before the look-ups (issue 15; the same features are found).
@@ -432,9 +464,39 @@ double nearest_neighbour(const RegularTriangulation& tri, int v) {
   return std::sqrt(best);
 }
 
+bool nearest_neighbours(const RegularTriangulation& tri, std::vector<double>& out,
+                        const std::function<bool(std::size_t)>& poll) {
+  // Every edge of Del V is an edge of some cell (finite or not): the pairs
+  // with kInfinite are left out, as adjacent_vertices leaves out the
+  // infinite vertex. Squared lengths first, the roots at the end.
+  const int n = tri.number_of_vertices();
+  out.assign(n, std::numeric_limits<double>::infinity());
+  const bool done = tri.visit_labels(
+      [&](const Tet& t, char&) {
+        for (int i = 0; i < 4; ++i) {
+          if (t[i] == kInfinite) continue;
+          const Point3& p = tri.point(t[i]);
+          for (int j = i + 1; j < 4; ++j) {
+            if (t[j] == kInfinite) continue;
+            const double d = dist2(tri.point(t[j]), p);
+            out[t[i]] = std::min(out[t[i]], d);
+            out[t[j]] = std::min(out[t[j]], d);
+          }
+        }
+      },
+      poll);
+  if (!done) return false;
+  for (int v = 0; v < n; ++v)
+    // No cell held v (a triangulation of dimension below 3): its own walk.
+    out[v] = std::isinf(out[v]) ? nearest_neighbour(tri, v) : std::sqrt(out[v]);
+  return true;
+}
+
 bool Subcomplex::conforms() const {
+  // Each subsegment's cell hint first (the walk of the stars of its ends
+  // only when the hint is stale; same answers; issue 15).
   for (const auto& [k, s] : segs_)
-    if (!tri_.is_edge(s.a, s.b)) return false;
+    if (!tri_.is_edge(s.a, s.b, s.cell)) return false;
   for (const Subfacet& h : subfacets())
     if (!subfacet_present(h)) return false;
   return true;

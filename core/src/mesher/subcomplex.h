@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -116,6 +117,15 @@ struct Insertion {
 
 /// N(v): the distance from v to its nearest neighbour in Del V.
 double nearest_neighbour(const RegularTriangulation& tri, int v);
+/// N(v) of every vertex v of tri, in `out` (by id): the values
+/// nearest_neighbour gives, bit for bit (the minimum of the same squared
+/// lengths, then its root), from one pass over the cells, each of whose six
+/// edges offers its length to both ends (beyond the paper, issue 15: a star
+/// walk per vertex was 40% of PUMP on mpi.off). `poll`, when given, is
+/// called with a count of cells every 1024 cells; when it returns false the
+/// pass stops and returns false (`out` then incomplete).
+bool nearest_neighbours(const RegularTriangulation& tri, std::vector<double>& out,
+                        const std::function<bool(std::size_t)>& poll = {});
 
 // ---- The subcomplex ------------------------------------------------------------
 /// The subsegments (with the shield subsegments of each sector), the sectors,
@@ -189,12 +199,22 @@ class Subcomplex {
   /// conflicts with starts without a point location; same answer.
   Insertion encroach(const Point3& c, int hint, CellRef start = nullptr) const;
   bool segment_encroached(const Subsegment& e) const;  ///< by a vertex of V (on or inside)
+  /// segment_encroached(e), from e's record of its last test (tested_at,
+  /// encroached) when that said "not encroached" at most kUpdateScan
+  /// insertions ago: then only the edge's presence and the vertices inserted
+  /// since are tested (beyond the paper, issue 15; see subcomplex.cpp). The
+  /// record must be of a test of this V with only insertions since (CONFORM
+  /// and REFINE: V grows by unweighted insertions, none hidden).
+  bool segment_encroached_update(const Subsegment& e) const;
+  static constexpr int kUpdateScan = 512;
   bool subfacet_present(const Subfacet& h) const;
   bool subfacet_encroached(const Subfacet& h) const;  ///< by a vertex (strictly inside)
   /// Subsegments and subfacets encroached by a point, among the features of
   /// the cells the point conflicts with (see the argument in subcomplex.cpp).
+  /// `zone`, when given, gets the finite vertices of those cells (sorted,
+  /// no repeats; Conform's rule 3 records them).
   void encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& segs, std::vector<Subfacet>& facets,
-                           CellRef start = nullptr) const;
+                           CellRef start = nullptr, std::vector<int>* zone = nullptr) const;
   /// A subfacet whose diametric ball lies inside a protecting ball.
   bool guarded(const Subfacet& h) const;
   /// Whether every subsegment and subfacet is in the triangulation.
