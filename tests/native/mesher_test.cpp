@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <set>
@@ -805,6 +806,48 @@ TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
   EXPECT_GT(order_free_models, 0);
 }
 
+// Runs INITIALIZE, CONFORM and REFINE on m, calling check() after CONFORM
+// and after REFINE and, when after_insertions, after every insertion of a
+// vertex; returns how many insertions it saw (0 unless after_insertions).
+std::size_t conform_and_refine_checking(mesher::Mesher& m, const std::function<void()>& check, bool after_insertions) {
+  std::size_t insertions = 0;
+  if (after_insertions)
+    m.inserter().observer = [&](const mesher::Insertion&, int, int id) {
+      if (id < 0) return;
+      ++insertions;
+      check();
+    };
+  m.initialize();
+  m.conform();
+  check();
+  m.refine();
+  check();
+  return insertions;
+}
+
+// A fresh Mesher with default options for each of files (which must not be
+// empty), given to body.
+void for_each_model(const std::vector<std::string>& files, const std::function<void(mesher::Mesher&)>& body) {
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), MeshOptions{});
+    body(st.m);
+  }
+}
+
+// Calls f(s, fresh) for every subsegment s that holds the record of a test,
+// fresh a copy of s without its cell hint (so that a test of it walks).
+void for_each_tested_subsegment(mesher::Mesher& m,
+                                const std::function<void(const mesher::Subsegment&, mesher::Subsegment&)>& f) {
+  for (const auto& [k, s] : m.subcomplex().subsegments()) {
+    if (s.tested_at == 0) continue;
+    mesher::Subsegment fresh = s;
+    fresh.cell = nullptr;
+    f(s, fresh);
+  }
+}
+
 // The record of the rule 1/4 test a subsegment keeps (Subsegment::
 // tested_at, queued_at, encroached; issue 15) is reused only when no
 // insertion queued the subsegment since the test: then it must be what the
@@ -812,35 +855,19 @@ TEST(MesherSpeed, SliverCountAndHandedScanAgreeWithTheFullOnes) {
 // subsegment after every insertion of CONFORM and REFINE.
 TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
   std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
-  ASSERT_FALSE(files.empty()) << "examples/models is missing";
   for (const auto& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
-  for (const std::string& file : files) {
-    SCOPED_TRACE(file);
-    Stage st(load(file), MeshOptions{});
-    mesher::Mesher& m = st.m;
-    std::size_t kept = 0, insertions = 0;
+  for_each_model(files, [](mesher::Mesher& m) {
+    std::size_t kept = 0;
     auto check = [&] {
-      for (const auto& [k, s] : m.subcomplex().subsegments()) {
-        if (s.tested_at == 0 || s.tested_at < s.queued_at) continue;  // tested again when next popped
+      for_each_tested_subsegment(m, [&](const mesher::Subsegment& s, mesher::Subsegment& fresh) {
+        if (s.tested_at < s.queued_at) return;  // tested again when next popped
         ++kept;
-        mesher::Subsegment fresh = s;
-        fresh.cell = nullptr;  // the walk, not the hint
         ASSERT_EQ(s.encroached, m.subcomplex().segment_encroached(fresh)) << "subsegment " << s.a << "-" << s.b;
-      }
+      });
     };
-    m.inserter().observer = [&](const mesher::Insertion&, int, int id) {
-      if (id < 0) return;
-      ++insertions;
-      check();
-    };
-    m.initialize();
-    m.conform();
-    check();
-    m.refine();
-    check();
-    EXPECT_GT(insertions, 0u);
+    EXPECT_GT(conform_and_refine_checking(m, check, true), 0u);
     EXPECT_GT(kept, 0u);
-  }
+  });
 }
 
 // Subcomplex::segment_encroached_update (issue 15) answers from a
@@ -848,48 +875,29 @@ TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
 // must say what a fresh full test says, for every subsegment with a record
 // (stale ones included), after every insertion of CONFORM and REFINE.
 TEST(MesherSpeed, UpdatedSubsegmentTestsAgreeWithAFreshTest) {
-  const std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
-  ASSERT_FALSE(files.empty()) << "examples/models is missing";
-  for (const std::string& file : files) {
-    SCOPED_TRACE(file);
-    Stage st(load(file), MeshOptions{});
-    mesher::Mesher& m = st.m;
+  for_each_model(models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"}), [](mesher::Mesher& m) {
     std::size_t updated = 0;
     auto check = [&] {
       const int n = m.triangulation().number_of_vertices();
-      for (const auto& [k, s] : m.subcomplex().subsegments()) {
-        if (s.tested_at == 0) continue;
+      for_each_tested_subsegment(m, [&](const mesher::Subsegment& s, mesher::Subsegment& fresh) {
         // The short way is taken (a record saying "not encroached", recent
         // enough): counted, so that the test cannot pass without it.
         updated += !s.encroached && !s.in_ball && n - int(s.tested_at) <= mesher::Subcomplex::kUpdateScan;
-        mesher::Subsegment kept = s, fresh = s;
-        fresh.cell = nullptr;
+        mesher::Subsegment kept = s;
         ASSERT_EQ(m.subcomplex().segment_encroached_update(kept), m.subcomplex().segment_encroached(fresh))
             << "subsegment " << s.a << "-" << s.b << " tested at " << s.tested_at << " of " << n;
-      }
+      });
     };
-    m.inserter().observer = [&](const mesher::Insertion&, int, int id) {
-      if (id >= 0) check();
-    };
-    m.initialize();
-    m.conform();
-    check();
-    m.refine();
-    check();
+    EXPECT_GT(conform_and_refine_checking(m, check, true), 0u);
     EXPECT_GT(updated, 0u);
-  }
+  });
 }
 
 // mesher::nearest_neighbours (one pass over the cells; issue 15) gives every
 // vertex the N(v) of nearest_neighbour's star walk, bit for bit, after
 // CONFORM and after REFINE.
 TEST(MesherSpeed, NearestNeighboursOfAllVerticesAgreeWithEachVertexsWalk) {
-  const std::vector<std::string> files = models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"});
-  ASSERT_FALSE(files.empty()) << "examples/models is missing";
-  for (const std::string& file : files) {
-    SCOPED_TRACE(file);
-    Stage st(load(file), MeshOptions{});
-    mesher::Mesher& m = st.m;
+  for_each_model(models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"}), [](mesher::Mesher& m) {
     auto check = [&] {
       const RegularTriangulation& tri = m.triangulation();
       std::vector<double> all;
@@ -901,12 +909,8 @@ TEST(MesherSpeed, NearestNeighboursOfAllVerticesAgreeWithEachVertexsWalk) {
         ASSERT_TRUE(std::isfinite(all[v]) && all[v] > 0) << "vertex " << v;
       }
     };
-    m.initialize();
-    m.conform();
-    check();
-    m.refine();
-    check();
-  }
+    conform_and_refine_checking(m, check, false);
+  });
 }
 
 // Rule 3's records (Conform::rule3_pass, issue 15) skip the test of a sharp

@@ -38,6 +38,14 @@ Tri rotated(const Tri& f) {
 }
 Tri reversed(const Tri& f) { return rotated({{f[0], f[2], f[1]}}); }
 
+/// The squared length of the shortest edge of tet T at its vertex T[i].
+double shortest_edge2_at(const std::vector<Point3>& P, const std::array<int, 4>& T, int i) {
+  double m = HUGE_VAL;
+  for (int j = 0; j < 4; ++j)
+    if (j != i) m = std::min(m, geometry::dist2(P[T[i]], P[T[j]]));
+  return m;
+}
+
 Tri outward_face(const std::array<int, 4>& t, int k) {
   return rotated({{t[kOutward[k][0]], t[kOutward[k][1]], t[kOutward[k][2]]}});
 }
@@ -274,9 +282,7 @@ void Improver::forget(const std::vector<int>& ids) {
     if (shape_[t] != TetClassifier::Shape::good)
       for (int v : T) --bad_at_[v];
     for (int i = 0; i < 4; ++i) {
-      double m = HUGE_VAL;
-      for (int j = 0; j < 4; ++j)
-        if (j != i) m = std::min(m, geometry::dist2(P_[T[j]], P_[T[i]]));
+      const double m = shortest_edge2_at(P_, T, i);
       const int at = forgot_marks_.get(T[i]);
       if (at < 0) {
         forgot_marks_.put(T[i], int(forgot_l2_.size()));
@@ -317,8 +323,7 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
       const Tet& T = tets_[t];
       for (int i = 0; i < 4; ++i) {
         double& m = fresh[std::lower_bound(verts.begin(), verts.end(), T[i]) - verts.begin()];
-        for (int j = 0; j < 4; ++j)
-          if (j != i) m = std::min(m, geometry::dist2(P_[T[j]], P_[T[i]]));
+        m = std::min(m, shortest_edge2_at(P_, T, i));
       }
     }
     for (std::size_t i = 0; i < verts.size(); ++i) {
@@ -353,9 +358,7 @@ Improver::ClassesBefore Improver::classes_before(const std::vector<int>& old) co
     b.violations += tet_class(t) == TetClass::violation;
     const Tet& T = tets_[t];
     for (int i = 0; i < 4; ++i) {
-      double m = HUGE_VAL;
-      for (int j = 0; j < 4; ++j)
-        if (j != i) m = std::min(m, geometry::dist2(P_[T[i]], P_[T[j]]));
+      const double m = shortest_edge2_at(P_, T, i);
       auto it = std::find_if(b.inside.begin(), b.inside.end(), [&](const auto& e) { return e.first == T[i]; });
       if (it == b.inside.end())
         b.inside.push_back({T[i], m});
@@ -381,9 +384,7 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   vert_marks_.reset(P_.size());  // v -> its index in after
   for (const Tet& T : fresh)
     for (int i = 0; i < 4; ++i) {
-      double m = HUGE_VAL;
-      for (int j = 0; j < 4; ++j)
-        if (j != i) m = std::min(m, geometry::dist2(P_[T[i]], P_[T[j]]));
+      const double m = shortest_edge2_at(P_, T, i);
       const int at = vert_marks_.get(T[i]);
       if (at < 0) {
         vert_marks_.put(T[i], int(after.size()));

@@ -182,15 +182,7 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
   std::vector<Tri>& tris = cavity_tris_;
   edges.clear();
   tris.clear();
-  for (const Tet& t : cavity) {
-    const bool on[4] = {sub_.on_p(t[0]), sub_.on_p(t[1]), sub_.on_p(t[2]), sub_.on_p(t[3])};
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (on[i] && on[j]) edges.push_back(edge_key(t[i], t[j]));
-    for (int k = 0; k < 4; ++k)
-      if (on[(k + 1) % 4] && on[(k + 2) % 4] && on[(k + 3) % 4])
-        tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
-  }
+  sub_.on_p_features(cavity, edges, tris);
   // The features are queued in the order enqueue_around's walk of the ring
   // meets them (so that the rules split the same ones first): a subsegment
   // ab (a < b) at a, in the order of subsegments_at(a); a subfacet at its

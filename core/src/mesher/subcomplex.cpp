@@ -91,6 +91,19 @@ void Subcomplex::freeze() {
   frozen_ = true;
 }
 
+void Subcomplex::on_p_features(const std::vector<Tet>& cells, std::vector<std::uint64_t>& edges,
+                               std::vector<Tri>& tris) const {
+  for (const Tet& t : cells) {
+    const bool on[4] = {on_p(t[0]), on_p(t[1]), on_p(t[2]), on_p(t[3])};
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        if (on[i] && on[j]) edges.push_back(edge_key(t[i], t[j]));
+    for (int k = 0; k < 4; ++k)
+      if (on[(k + 1) % 4] && on[(k + 2) % 4] && on[(k + 3) % 4])
+        tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
+  }
+}
+
 void Subcomplex::subfacets_at(int f, int v, std::vector<Tri>& out) const {
   live_facet_dt(f).incident_triangles(v, out);
   out.erase(std::remove_if(out.begin(), out.end(), [&](const Tri& t) { return !lies_in_facet(f, t); }), out.end());
@@ -265,15 +278,7 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   // before the look-ups (issue 15; the same features are found).
   std::vector<std::uint64_t> edges;
   std::vector<Tri> tris;
-  for (const Tet& t : cells) {
-    const bool on[4] = {on_p(t[0]), on_p(t[1]), on_p(t[2]), on_p(t[3])};
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        if (on[i] && on[j]) edges.push_back(edge_key(t[i], t[j]));
-    for (int k = 0; k < 4; ++k)
-      if (on[(k + 1) % 4] && on[(k + 2) % 4] && on[(k + 3) % 4])
-        tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
-  }
+  on_p_features(cells, edges, tris);
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   for (std::uint64_t k : edges) {

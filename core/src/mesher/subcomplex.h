@@ -182,6 +182,11 @@ class Subcomplex {
   bool on_p(int v) const {
     return static_cast<std::size_t>(v) < on_p_.size() ? on_p_[v] != 0 : v >= 0 && verts_[v].on != On::free;
   }
+  /// Appends the edges (edge_key) and triangles (sorted) of cells whose
+  /// vertices are all on P (on_p): the only ones that can be subsegments and
+  /// subfacets (issue 15: most edges of a refined mesh are left out before
+  /// any look-up). Unsorted, with repeats.
+  void on_p_features(const std::vector<Tet>& cells, std::vector<std::uint64_t>& edges, std::vector<Tri>& tris) const;
   /// The subfacets of facet f at vertex v.
   void subfacets_at(int f, int v, std::vector<Tri>& out) const;
   bool is_subfacet(int f, const Tri& t) const;
