@@ -95,8 +95,8 @@ void Queues::enqueue_around(int v) {
   // A vertex of the ring may be the apex of a long fan in a facet (its far
   // edge split finely, as between nearly touching edges): walking its whole
   // star on every insertion nearby would make refinement quadratic, so its
-  // triangles are then found from its edges to the other ring vertices.
-  constexpr std::size_t kFan = 48;
+  // triangles are then found from its edges to the other ring vertices
+  // (kFan).
   std::vector<Tri>& pair = pair_;
   // The ring vertices on P with their facets, in the ring's order, and which
   // ring vertices each facet holds (only the vertices whose facets_of holds f
@@ -150,10 +150,7 @@ void Queues::enqueue_around(int v) {
         if (starts_at(x, t) && in_ring(t[0]) && in_ring(t[1]) && in_ring(t[2])) consider(f, t);
     }
   }
-  if (meter_.phase() == Phase::refine)
-    for (std::size_t i = 0; i < cells.size(); ++i)
-      if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end())
-        tets_.push_back({cells[i], refs[i]});
+  if (meter_.phase() == Phase::refine) queue_finite_cells(cells, refs);
 }
 
 void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
@@ -238,7 +235,6 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
     // The place in the star matters only between subfacets of one facet at
     // one smallest vertex (rare: a cavity at the boundary holds one or two).
     std::sort(order.begin(), order.end());
-    constexpr std::size_t kFan = 48;  // as in enqueue_around
     std::vector<Tri>& around = around_;
     for (std::size_t i = 0; i + 1 < order.size(); ++i) {
       if (order[i].first != order[i + 1].first) continue;
@@ -269,6 +265,10 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
     }
     for (const auto& o : order) subfacets_.push_back(found[o.second]);
   }
+  queue_finite_cells(cells, refs);
+}
+
+void Queues::queue_finite_cells(const std::vector<Tet>& cells, const std::vector<CellRef>& refs) {
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (std::find(cells[i].begin(), cells[i].end(), kInfinite) == cells[i].end()) tets_.push_back({cells[i], refs[i]});
 }

@@ -81,6 +81,11 @@ class Queues {
   /// cells it destroyed) is known: the features are read from the cavity
   /// instead of the ring (queues.cpp says why that suffices).
   void enqueue_from_cavity(int v, const std::vector<Tet>& cavity);
+  /// Rule 6's queue gets the finite cells of `cells` (with their refs).
+  void queue_finite_cells(const std::vector<Tet>& cells, const std::vector<CellRef>& refs);
+  /// enqueue_around and enqueue_from_cavity walk a facet vertex's whole star
+  /// only when it holds at most kFan triangles (a long fan's apex otherwise).
+  static constexpr std::size_t kFan = 48;
   std::vector<std::uint64_t> cavity_edges_;  ///< enqueue_from_cavity's buffers
   std::vector<Tri> cavity_tris_;
   std::vector<std::uint64_t> cavity_keys_;
