@@ -4,6 +4,7 @@
 #include "triangulation.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -743,7 +744,12 @@ class Pool {
   void* allocate(std::size_t bytes) {
     bytes = (bytes + kAlign - 1) / kAlign * kAlign;
     std::lock_guard<std::mutex> lock(mutex_);
-    if (chunks_.size() == chunks_.capacity()) chunks_.reserve(2 * chunks_.size() + 16);  // no push_back below throws
+    // Exception safety: the reserve and free_'s entry for this size (a
+    // std::map insert) are the only steps here that can throw, and both come
+    // before any change of the pool's counts, so a bad_alloc leaves the pool
+    // as it was (the entry is created here, for deallocate, which must not
+    // throw); then no push_back below throws.
+    if (chunks_.size() == chunks_.capacity()) chunks_.reserve(2 * chunks_.size() + 16);
     void* p;
     if (void*& head = free_[bytes]) {  // a freed block of this size
       p = head;
@@ -773,7 +779,12 @@ class Pool {
     bytes = (bytes + kAlign - 1) / kAlign * kAlign;
     std::lock_guard<std::mutex> lock(mutex_);
     if (--live_ > 0) {
-      void*& head = free_[bytes];
+      // Never an insert (deallocate runs in CGAL's destructors and must not
+      // throw): allocate made this size's entry, and free_ is cleared only
+      // when no block is live.
+      const auto it = free_.find(bytes);
+      assert(it != free_.end());
+      void*& head = it->second;
       *static_cast<void**>(p) = head;
       head = p;
       return;

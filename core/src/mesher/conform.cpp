@@ -55,12 +55,12 @@ bool Conform::rule3_unchanged(const Rule3Record& r) const {
   return true;
 }
 
-bool Conform::rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, std::vector<int>& zone) const {
-  std::vector<std::uint64_t> segs;
-  std::vector<Subfacet> facets;
+bool Conform::rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, Rule3Scratch& w) const {
+  std::vector<std::uint64_t>& segs = w.segs;
+  std::vector<Subfacet>& facets = w.facets;
   const int ea = dom_.p.edges[s.edge].a, eb = dom_.p.edges[s.edge].b;
   const Point3 m = midpoint(tri_.point(s.a), tri_.point(s.b));
-  sub_.encroached_by_point(m, s.a, segs, facets, nullptr, &zone);
+  sub_.encroached_by_point(m, s.a, segs, facets, nullptr, &w.zone);
   auto disjoint_facet = [&](int f) { return !dom_.facet_has_vertex(f, ea) && !dom_.facet_has_vertex(f, eb); };
   for (std::uint64_t g : segs) {
     if (g == k) continue;
@@ -83,12 +83,12 @@ bool Conform::rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, s
 }
 
 bool Conform::rule3_records_hold() const {
-  std::vector<int> zone;
+  Rule3Scratch w;
   for (const auto& [k, r] : state_.records) {
     const auto it = sub_.subsegments().find(k);
     if (it == sub_.subsegments().end() || !rule3_unchanged(r)) continue;
     Insertion ins;
-    if (rule3_test(k, it->second, ins, zone)) return false;
+    if (rule3_test(k, it->second, ins, w)) return false;
   }
   return true;
 }
@@ -118,7 +118,7 @@ bool Conform::rule3_pass() {
   Rule3State& state = state_;
   const std::vector<std::uint64_t> keys = sharp_subsegment_keys();
   bool acted = false;
-  std::vector<int> zone;
+  Rule3Scratch w;
   for (std::uint64_t k : keys) {
     meter_.step_done();
     if (!meter_.poll(1)) break;
@@ -135,8 +135,8 @@ bool Conform::rule3_pass() {
     const Subsegment s = it->second;
     const std::uint32_t tested_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
     Insertion ins;
-    const bool found = rule3_test(k, s, ins, zone);
-    if (!found) state.records[k] = {tested_at, zone};
+    const bool found = rule3_test(k, s, ins, w);
+    if (!found) state.records[k] = {tested_at, w.zone};
     if (found && ins_.insert(ins, Rule::rule3_split_near_sharp_subsegment) >= 0) {
       acted = true;
       meter_.tick();

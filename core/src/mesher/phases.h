@@ -78,11 +78,19 @@ class Conform {
   };
   /// Whether the record of subsegment k says its test would find nothing.
   bool rule3_unchanged(const Rule3Record& r) const;
+  /// Rule 3's test's working storage, kept across a pass's tests so that a
+  /// test allocates nothing once the vectors have grown: the features the
+  /// midpoint encroaches, and the vertices of its conflict cells.
+  struct Rule3Scratch {
+    std::vector<std::uint64_t> segs;
+    std::vector<Subfacet> facets;
+    std::vector<int> zone;
+  };
   /// Rule 3's test at sharp subsegment s (key k): whether its midpoint
   /// encroaches a feature in an element of P disjoint from s's edge, and
-  /// then the point to insert; `zone` gets the vertices of the midpoint's
+  /// then the point to insert; `w.zone` gets the vertices of the midpoint's
   /// conflict cells.
-  bool rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, std::vector<int>& zone) const;
+  bool rule3_test(std::uint64_t k, const Subsegment& s, Insertion& ins, Rule3Scratch& w) const;
   /// One pass of rule 3 over the sharp subsegments; whether it inserted.
   bool rule3_pass();
   Rule3State state_;
