@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -929,14 +930,24 @@ class VertexById {
 };
 
 struct PlanarDelaunay::Impl {
-  Dt2 dt;
+  /// The triangulation, made on first use with the plane's traits
+  /// (set_plane empties it): one Dt2 per facet, where building a default one
+  /// at construction and replacing it in set_plane made two (their blocks
+  /// from the pool each time). Observably the same: an empty triangulation
+  /// of the last set_plane's metric, of z = 0's before any.
+  PlaneMetric metric;
+  mutable std::optional<Dt2> made;
+  Dt2& dt() const {
+    if (!made) made.emplace(PlaneTraits(metric));
+    return *made;
+  }
   VertexById by_id;
   int axis = 2;
   Dt2::Vertex_handle last;
 
   // A star walk around v may visit at most this many faces: the degree of a
   // vertex is below the number of vertices, plus the infinite face(s).
-  std::size_t star_bound() const { return dt.number_of_vertices() + 2; }
+  std::size_t star_bound() const { return dt().number_of_vertices() + 2; }
   [[noreturn]] void exceeded(const char* loop, int id) const {
     throw LoopBoundError(std::string("PlanarDelaunay::") + loop + ": the star walk around vertex " +
                          std::to_string(id) + " passed its bound of " + std::to_string(star_bound()) +
@@ -962,7 +973,8 @@ void PlanarDelaunay::set_plane(const Point3& normal) {
   m.b = 2 * ni * nj;
   m.c = na * na + nj * nj;
   impl_->axis = a;
-  impl_->dt = Dt2(PlaneTraits(m));
+  impl_->made.reset();
+  impl_->metric = m;
   impl_->by_id.clear();
   impl_->last = Dt2::Vertex_handle();
 }
@@ -983,9 +995,9 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
     start = impl_->last->face();
   Dt2::Locate_type lt;
   int li = 0;
-  const Dt2::Face_handle f = impl_->dt.locate(q, lt, li, start);
+  const Dt2::Face_handle f = impl_->dt().locate(q, lt, li, start);
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
-  const Dt2::Vertex_handle v = impl_->dt.insert(q, lt, f, li);
+  const Dt2::Vertex_handle v = impl_->dt().insert(q, lt, f, li);
   v->info() = id;
   impl_->by_id.set(id, v);
   impl_->last = v;
@@ -994,7 +1006,7 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
 
 std::vector<std::array<int, 3>> PlanarDelaunay::triangles() const {
   std::vector<std::array<int, 3>> out;
-  for (auto f = impl_->dt.finite_faces_begin(); f != impl_->dt.finite_faces_end(); ++f)
+  for (auto f = impl_->dt().finite_faces_begin(); f != impl_->dt().finite_faces_end(); ++f)
     out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   return out;
 }
@@ -1006,30 +1018,31 @@ void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
 bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const {
   out.clear();
   const Dt2::Vertex_handle v = impl_->by_id.find(id);
-  if (v == Dt2::Vertex_handle() || impl_->dt.dimension() < 2) return true;
-  auto f = impl_->dt.incident_faces(v), done = f;
+  if (v == Dt2::Vertex_handle() || impl_->dt().dimension() < 2) return true;
+  auto f = impl_->dt().incident_faces(v), done = f;
   if (f == nullptr) return true;
   const std::size_t bound = impl_->star_bound();
   std::size_t seen = 0;
   do {
     if (++seen > cap) return false;
     if (seen > bound) impl_->exceeded("incident_triangles", id);
-    if (!impl_->dt.is_infinite(f)) out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    if (!impl_->dt().is_infinite(f))
+      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   } while (++f != done);
   return true;
 }
 
 void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const {
   out.clear();
-  if (a == b || impl_->dt.dimension() < 2) return;
+  if (a == b || impl_->dt().dimension() < 2) return;
   const Dt2::Vertex_handle va = impl_->by_id.find(a), vb = impl_->by_id.find(b);
   if (va == Dt2::Vertex_handle() || vb == Dt2::Vertex_handle()) return;
   // Walk the star of a looking for b and the star of b looking for a, one
   // face of each in turn; the first walk to find the edge wins, and the first
   // to end without it proves there is no edge ab. Each walk is bounded by
   // star_bound() faces.
-  auto fa = impl_->dt.incident_faces(va), done_a = fa;
-  auto fb = impl_->dt.incident_faces(vb), done_b = fb;
+  auto fa = impl_->dt().incident_faces(va), done_a = fa;
+  auto fb = impl_->dt().incident_faces(vb), done_b = fb;
   if (fa == nullptr || fb == nullptr) return;
   const std::size_t bound = impl_->star_bound();
   Dt2::Face_handle hit;
@@ -1047,9 +1060,10 @@ void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>
   // The edge's two faces: hit and its neighbour across the edge.
   const int i = 3 - hit->index(va) - hit->index(vb);
   for (const Dt2::Face_handle& g : {hit, hit->neighbor(i)})
-    if (!impl_->dt.is_infinite(g)) out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
+    if (!impl_->dt().is_infinite(g))
+      out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
 }
 
-std::size_t PlanarDelaunay::size() const { return impl_->dt.number_of_vertices(); }
+std::size_t PlanarDelaunay::size() const { return impl_->dt().number_of_vertices(); }
 
 }  // namespace wqmesh
