@@ -258,6 +258,9 @@ struct RegularTriangulation::Impl {
   mutable Point3 zone_p{};
   mutable double zone_w = 0;
   mutable std::vector<Tet> zone;
+  /// find_conflicts' output in conflict_cells, kept so that a call allocates
+  /// nothing once it has grown (issue 15; no other use).
+  mutable std::vector<Rt::Cell_handle> conflict_scratch;
   bool cavity_valid = false;
   std::vector<Tet> cavity;
   void remember_zone(const Point3& p, double w, const std::vector<Tet>& out) const {
@@ -492,7 +495,8 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   const Rt::Cell_handle c = impl_->rt.locate(wp, lt, li, lj, impl_->start_cell(hint));
   impl_->zone_valid = false;
   if (lt == Rt::VERTEX) return;
-  std::vector<Rt::Cell_handle> cells;
+  std::vector<Rt::Cell_handle>& cells = impl_->conflict_scratch;
+  cells.clear();
   impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
   for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
   impl_->remember_zone(p, w, out);
@@ -512,7 +516,8 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   // c is in the conflict zone, which is connected, so the walk from c finds
   // the same set as the walk from the cell that holds p.
   if (c != Rt::Cell_handle() && impl_->rt.side_of_power_sphere(c, wp, false) == CGAL::ON_BOUNDED_SIDE) {
-    std::vector<Rt::Cell_handle> cells;
+    std::vector<Rt::Cell_handle>& cells = impl_->conflict_scratch;
+    cells.clear();
     impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
     for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
     impl_->remember_zone(p, w, out);

@@ -261,7 +261,7 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   // negative at one of its vertices, the circumcenters of the incident cells.
   seg_out.clear();
   facet_out.clear();
-  std::vector<Tet> cells;
+  std::vector<Tet>& cells = scratch_.cells;
   // (The order of the cells does not matter: the edges and triangles are
   // sorted below.)
   tri_.conflict_cells(c, 0, hint, cells, start);
@@ -276,8 +276,10 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   // Only the edges and triangles with every vertex on P can be subsegments
   // and subfacets (on_p): the others, most of a refined mesh's, are left out
   // before the look-ups (issue 15; the same features are found).
-  std::vector<std::uint64_t> edges;
-  std::vector<Tri> tris;
+  std::vector<std::uint64_t>& edges = scratch_.edges;
+  std::vector<Tri>& tris = scratch_.tris;
+  edges.clear();
+  tris.clear();
   on_p_features(cells, edges, tris);
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
@@ -288,7 +290,7 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   }
   std::sort(tris.begin(), tris.end());
   tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-  std::vector<int> f0, f1, f2;
+  std::vector<int>&f0 = scratch_.f0, &f1 = scratch_.f1, &f2 = scratch_.f2;
   for (const Tri& t : tris) {
     facets_of(t[0], f0);
     if (f0.empty()) continue;

@@ -237,7 +237,17 @@ class Subcomplex {
   const ProtectingBalls& balls_;
   std::unordered_map<std::uint64_t, Subsegment> segs_;
   std::vector<std::vector<std::uint64_t>> vertex_segs_;
-  std::vector<char> on_p_;                               ///< by vertex id: verts_[id].on != On::free (on_p)
+  std::vector<char> on_p_;  ///< by vertex id: verts_[id].on != On::free (on_p)
+  /// encroached_by_point's working storage, kept across calls so that a call
+  /// allocates nothing once the vectors have grown (issue 15). Not
+  /// reentrant: one Subcomplex serves one run on one thread.
+  struct EncroachScratch {
+    std::vector<Tet> cells;
+    std::vector<std::uint64_t> edges;
+    std::vector<Tri> tris;
+    std::vector<int> f0, f1, f2;
+  };
+  mutable EncroachScratch scratch_;
   std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
   std::vector<PlanarDelaunay> facet_dt_;
   bool frozen_ = false;
