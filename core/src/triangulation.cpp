@@ -263,6 +263,15 @@ struct RegularTriangulation::Impl {
   mutable std::vector<Rt::Cell_handle> conflict_scratch;
   bool cavity_valid = false;
   std::vector<Tet> cavity;
+  /// conflict_cells' common end: the cells whose power spheres hold wp
+  /// (p with weight w), found by CGAL's walk from c, a cell of that set, into
+  /// `out`, and remembered as the last zone asked for.
+  void collect_zone(const Point3& p, double w, const WPoint& wp, Rt::Cell_handle c, std::vector<Tet>& out) const {
+    conflict_scratch.clear();
+    rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(conflict_scratch));
+    for (const Rt::Cell_handle& cell : conflict_scratch) out.push_back(tet_of(cell));
+    remember_zone(p, w, out);
+  }
   void remember_zone(const Point3& p, double w, const std::vector<Tet>& out) const {
     zone_valid = !out.empty();
     zone_p = p;
@@ -495,11 +504,7 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   const Rt::Cell_handle c = impl_->rt.locate(wp, lt, li, lj, impl_->start_cell(hint));
   impl_->zone_valid = false;
   if (lt == Rt::VERTEX) return;
-  std::vector<Rt::Cell_handle>& cells = impl_->conflict_scratch;
-  cells.clear();
-  impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
-  for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
-  impl_->remember_zone(p, w, out);
+  impl_->collect_zone(p, w, wp, c, out);
 }
 
 const std::vector<Tet>* RegularTriangulation::last_cavity() const {
@@ -516,11 +521,7 @@ void RegularTriangulation::conflict_cells(const Point3& p, double w, int hint, s
   // c is in the conflict zone, which is connected, so the walk from c finds
   // the same set as the walk from the cell that holds p.
   if (c != Rt::Cell_handle() && impl_->rt.side_of_power_sphere(c, wp, false) == CGAL::ON_BOUNDED_SIDE) {
-    std::vector<Rt::Cell_handle>& cells = impl_->conflict_scratch;
-    cells.clear();
-    impl_->rt.find_conflicts(wp, c, CGAL::Emptyset_iterator(), std::back_inserter(cells));
-    for (const Rt::Cell_handle& cell : cells) out.push_back(impl_->tet_of(cell));
-    impl_->remember_zone(p, w, out);
+    impl_->collect_zone(p, w, wp, c, out);
     return;
   }
   conflict_cells(p, w, hint, out);
@@ -935,15 +936,13 @@ class VertexById {
 };
 
 struct PlanarDelaunay::Impl {
-  /// The triangulation, made on first use with the plane's traits
-  /// (set_plane empties it): one Dt2 per facet, where building a default one
-  /// at construction and replacing it in set_plane made two (their blocks
-  /// from the pool each time). Observably the same: an empty triangulation
-  /// of the last set_plane's metric, of z = 0's before any.
-  PlaneMetric metric;
+  /// The triangulation, made by set_plane with the plane's traits, or on
+  /// first use with z = 0's when no set_plane came first: one Dt2 per facet,
+  /// where building a default one at construction and replacing it in
+  /// set_plane made two (their blocks from the pool each time).
   mutable std::optional<Dt2> made;
   Dt2& dt() const {
-    if (!made) made.emplace(PlaneTraits(metric));
+    if (!made) made.emplace(PlaneTraits());
     return *made;
   }
   VertexById by_id;
@@ -978,8 +977,7 @@ void PlanarDelaunay::set_plane(const Point3& normal) {
   m.b = 2 * ni * nj;
   m.c = na * na + nj * nj;
   impl_->axis = a;
-  impl_->made.reset();
-  impl_->metric = m;
+  impl_->made.emplace(PlaneTraits(m));
   impl_->by_id.clear();
   impl_->last = Dt2::Vertex_handle();
 }
@@ -1000,9 +998,10 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
     start = impl_->last->face();
   Dt2::Locate_type lt;
   int li = 0;
-  const Dt2::Face_handle f = impl_->dt().locate(q, lt, li, start);
+  Dt2& dt = impl_->dt();
+  const Dt2::Face_handle f = dt.locate(q, lt, li, start);
   if (lt == Dt2::VERTEX) return f->vertex(li)->info();
-  const Dt2::Vertex_handle v = impl_->dt().insert(q, lt, f, li);
+  const Dt2::Vertex_handle v = dt.insert(q, lt, f, li);
   v->info() = id;
   impl_->by_id.set(id, v);
   impl_->last = v;
@@ -1011,7 +1010,8 @@ int PlanarDelaunay::insert(const Point3& p, int id, int hint) {
 
 std::vector<std::array<int, 3>> PlanarDelaunay::triangles() const {
   std::vector<std::array<int, 3>> out;
-  for (auto f = impl_->dt().finite_faces_begin(); f != impl_->dt().finite_faces_end(); ++f)
+  const Dt2& dt = impl_->dt();
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
     out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   return out;
 }
@@ -1023,31 +1023,32 @@ void PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>&
 bool PlanarDelaunay::incident_triangles(int id, std::vector<std::array<int, 3>>& out, std::size_t cap) const {
   out.clear();
   const Dt2::Vertex_handle v = impl_->by_id.find(id);
-  if (v == Dt2::Vertex_handle() || impl_->dt().dimension() < 2) return true;
-  auto f = impl_->dt().incident_faces(v), done = f;
+  const Dt2& dt = impl_->dt();
+  if (v == Dt2::Vertex_handle() || dt.dimension() < 2) return true;
+  auto f = dt.incident_faces(v), done = f;
   if (f == nullptr) return true;
   const std::size_t bound = impl_->star_bound();
   std::size_t seen = 0;
   do {
     if (++seen > cap) return false;
     if (seen > bound) impl_->exceeded("incident_triangles", id);
-    if (!impl_->dt().is_infinite(f))
-      out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
+    if (!dt.is_infinite(f)) out.push_back({{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
   } while (++f != done);
   return true;
 }
 
 void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const {
   out.clear();
-  if (a == b || impl_->dt().dimension() < 2) return;
+  const Dt2& dt = impl_->dt();
+  if (a == b || dt.dimension() < 2) return;
   const Dt2::Vertex_handle va = impl_->by_id.find(a), vb = impl_->by_id.find(b);
   if (va == Dt2::Vertex_handle() || vb == Dt2::Vertex_handle()) return;
   // Walk the star of a looking for b and the star of b looking for a, one
   // face of each in turn; the first walk to find the edge wins, and the first
   // to end without it proves there is no edge ab. Each walk is bounded by
   // star_bound() faces.
-  auto fa = impl_->dt().incident_faces(va), done_a = fa;
-  auto fb = impl_->dt().incident_faces(vb), done_b = fb;
+  auto fa = dt.incident_faces(va), done_a = fa;
+  auto fb = dt.incident_faces(vb), done_b = fb;
   if (fa == nullptr || fb == nullptr) return;
   const std::size_t bound = impl_->star_bound();
   Dt2::Face_handle hit;
@@ -1065,8 +1066,7 @@ void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>
   // The edge's two faces: hit and its neighbour across the edge.
   const int i = 3 - hit->index(va) - hit->index(vb);
   for (const Dt2::Face_handle& g : {hit, hit->neighbor(i)})
-    if (!impl_->dt().is_infinite(g))
-      out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
+    if (!dt.is_infinite(g)) out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
 }
 
 std::size_t PlanarDelaunay::size() const { return impl_->dt().number_of_vertices(); }
