@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # wqmesh: builds the core natively (build/native: library, command line,
-# GoogleTest tests), to wasm (build/wasm: wasm/wqmesh.mjs, then copied beside
-# wasm/index.mjs with the option table wasm/options.mjs), the libFuzzer
+# GoogleTest tests), to wasm (build/wasm: wasm/wqmesh.mjs and its binary
+# wasm/wqmesh.wasm, then copied beside wasm/index.mjs with the option table
+# wasm/options.mjs), the libFuzzer
 # targets of the input path (build/fuzz: clang++-14, libFuzzer + ASan + UBSan)
 # and the GoogleTest tests under AddressSanitizer and UndefinedBehaviorSanitizer
 # (build/asan: g++, -O1). The build folders are reused, so a second run only
@@ -59,9 +60,10 @@ if want wasm; then
   # Debian's emcc finds acorn (its JS optimizer) through Node's module path.
   export NODE_PATH=/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}
   build_folder wasm "Release, emcmake" emcmake cmake -S . -B build/wasm -DCMAKE_BUILD_TYPE=Release
-  say "wasm module: build/wasm/wasm/wqmesh.mjs ($(stat -c %s build/wasm/wasm/wqmesh.mjs) bytes)"
-  # The package's files beside wasm/index.mjs (not committed): the module and
-  # its option table, so that a checkout serves and imports what the package ships.
+  say "wasm module: build/wasm/wasm/wqmesh.mjs ($(stat -c %s build/wasm/wasm/wqmesh.mjs) bytes)" \
+      "and wqmesh.wasm ($(stat -c %s build/wasm/wasm/wqmesh.wasm) bytes)"
+  # The package's files beside wasm/index.mjs (not committed): the glue, its
+  # binary and the option table, so that a checkout serves and imports what the package ships.
   node scripts/package_wasm.mjs build/wasm
 fi
 

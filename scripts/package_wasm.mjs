@@ -1,40 +1,45 @@
 // wqmesh: puts the built wasm module beside the package entry: copies
-// build/wasm/wasm/wqmesh.mjs to wasm/wqmesh.mjs, writes wasm/wqmesh.wasm, the
-// binary inlined in that module as a file of its own (the package compiles it
-// once per instance, with WebAssembly.compileStreaming in browsers:
-// wasm/index.mjs), and wasm/options.mjs, the option table as the module
-// itself returns it (optionTable(), from the core's table in
-// core/src/options.cpp) and the module's version. The files are build
-// outputs (see .gitignore), never committed. Run by
-// `scripts/build.sh wasm` and so by `npm pack` (prepack).
+// build/wasm/wasm/wqmesh.mjs (the Emscripten glue) and wqmesh.wasm (its
+// binary, the one copy the package ships) to wasm/, and writes
+// wasm/options.mjs, the option table as the module itself returns it
+// (optionTable(), from the core's table in core/src/options.cpp) and the
+// module's version. Refuses a glue with a binary inlined (a SINGLE_FILE
+// link would ship the code twice). The files are build outputs (see
+// .gitignore), never committed. Run by `scripts/build.sh wasm` and so by
+// `npm pack` (prepack).
 // Usage: node scripts/package_wasm.mjs [BUILD_DIR]   (default build/wasm)
 // SPDX-License-Identifier: GPL-3.0-or-later
 import { copyFileSync, existsSync, readFileSync, renameSync, statSync, writeFileSync } from 'node:fs';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { compileWasm, instantiateModule } from '../wasm/core.mjs';
+
 const root = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const build = resolve(root, process.argv[2] ?? 'build/wasm');
-const built = join(build, 'wasm/wqmesh.mjs');
-if (!existsSync(built)) {
-  console.error(`package_wasm: error: ${built} is missing (run: bash scripts/build.sh wasm)`);
+const fail = (message) => {
+  console.error(`package_wasm: error: ${message}`);
   process.exit(1);
-}
-const target = join(root, 'wasm/wqmesh.mjs');
-copyFileSync(built, `${target}.tmp`);
-renameSync(`${target}.tmp`, target);  // a page or a test never sees half a file
-// The single-file module holds its binary as one base64 data URI.
-const inlined = readFileSync(target, 'utf8').match(/data:application\/octet-stream;base64,([A-Za-z0-9+/=]+)/);
-if (!inlined) {
-  console.error(`package_wasm: error: ${built} has no inlined wasm binary (is it linked with -sSINGLE_FILE=1?)`);
-  process.exit(1);
-}
-const binary = Buffer.from(inlined[1], 'base64');
-const wasmTarget = join(root, 'wasm/wqmesh.wasm');
-writeFileSync(`${wasmTarget}.tmp`, binary);
-renameSync(`${wasmTarget}.tmp`, wasmTarget);
+};
+const built = { glue: join(build, 'wasm/wqmesh.mjs'), binary: join(build, 'wasm/wqmesh.wasm') };
+for (const f of Object.values(built)) if (!existsSync(f)) fail(`${f} is missing (run: bash scripts/build.sh wasm)`);
+// A data URI of the binary (the glue always names the prefix
+// "data:application/octet-stream;base64,"; the binary itself starts with
+// "\0asm", "AGFzbQ" in base64): a SINGLE_FILE link.
+if (/base64,AGFzbQ/.test(readFileSync(built.glue, 'utf8')))
+  fail(`${built.glue} has the wasm binary inlined (linked with -sSINGLE_FILE=1?): the package ships it once, as wqmesh.wasm`);
 
-const module = await (await import(pathToFileURL(target).href)).default();
+/** Copies `from` to `to` through a temporary file, so that a page or a test never sees half a file. */
+const place = (from, to) => {
+  copyFileSync(from, `${to}.tmp`);
+  renameSync(`${to}.tmp`, to);
+};
+const target = { glue: join(root, 'wasm/wqmesh.mjs'), binary: join(root, 'wasm/wqmesh.wasm') };
+place(built.binary, target.binary);
+place(built.glue, target.glue);
+
+const factory = (await import(pathToFileURL(target.glue).href)).default;
+const module = await instantiateModule(factory, await compileWasm(pathToFileURL(target.binary)));
 const table = JSON.parse(module.optionTable());
 const text = '// wqmesh: the option table and the version of wqmesh.mjs, written by\n' +
              '// scripts/package_wasm.mjs from the module (core/src/options.cpp). Do not edit.\n' +
@@ -42,5 +47,5 @@ const text = '// wqmesh: the option table and the version of wqmesh.mjs, written
              `export const version = ${JSON.stringify(module.version())};\n` +
              `export default ${JSON.stringify(table, null, 2)};\n`;
 writeFileSync(join(root, 'wasm/options.mjs'), text);
-console.log(`package_wasm: wasm/wqmesh.mjs (${statSync(target).size} bytes), wasm/wqmesh.wasm (${binary.length} bytes) and wasm/options.mjs ` +
-            `(${table.length} options) written`);
+console.log(`package_wasm: wasm/wqmesh.mjs (${statSync(target.glue).size} bytes), wasm/wqmesh.wasm ` +
+            `(${statSync(target.binary).size} bytes) and wasm/options.mjs (${table.length} options) written`);

@@ -162,48 +162,56 @@ const nodeFs = 'node:fs/promises';
  * WebAssembly.compileStreaming when the server says application/wasm, which
  * lets Chromium keep the optimized code in its code cache and reuse it on
  * the next page load, as long as the HTTP cache may keep the file (no
- * `Cache-Control: no-store`). Rejects when the file is missing or not wasm.
+ * `Cache-Control: no-store`). Rejects with a WqmeshError `internal` naming
+ * the file when it is missing or not wasm.
  */
 export async function compileWasm(url) {
   const at = new URL(url);
-  if (at.protocol === 'file:') {
-    const { readFile } = await import(nodeFs);
-    return WebAssembly.compile(await readFile(at));
+  try {
+    if (at.protocol === 'file:') {
+      const { readFile } = await import(nodeFs);
+      return await WebAssembly.compile(await readFile(at));
+    }
+    const response = await fetch(at, { credentials: 'same-origin' });
+    if (!response.ok) throw new Error(`HTTP ${response.status}`);
+    if (typeof WebAssembly.compileStreaming === 'function' && /^application\/wasm\b/.test(response.headers.get('Content-Type') ?? ''))
+      return await WebAssembly.compileStreaming(response);
+    return await WebAssembly.compile(await response.arrayBuffer());
+  } catch (e) {
+    throw new WqmeshError('internal', `wqmesh: cannot load the wasm binary ${at} ` +
+                                      `(in a checkout: bash scripts/build.sh wasm): ${e.message}`, { cause: e });
   }
-  const response = await fetch(at, { credentials: 'same-origin' });
-  if (!response.ok) throw new Error(`${at}: HTTP ${response.status}`);
-  if (typeof WebAssembly.compileStreaming === 'function' && /^application\/wasm\b/.test(response.headers.get('Content-Type') ?? ''))
-    return WebAssembly.compileStreaming(response);
-  return WebAssembly.compile(await response.arrayBuffer());
 }
 
 /**
  * Instantiates the Emscripten factory (wqmesh.mjs's default export) on the
- * compiled module `wasm`, so that every instance of one package (the calling
- * thread's and each worker's) runs the same compiled code, and V8 compiles
- * and optimizes it once; with `wasm` null, or when `wasm` is not the binary
- * of this factory, on the binary inlined in wqmesh.mjs (compiled anew).
+ * compiled module `wasm` (compileWasm), so that every instance of one
+ * package (the calling thread's and each worker's) runs the same compiled
+ * code, and V8 compiles and optimizes it once. The glue holds no binary of
+ * its own (linked without SINGLE_FILE): a `wasm` that is not its binary
+ * (another build's, with other imports or exports) is a WqmeshError
+ * `internal`, as is a missing one.
  */
 export async function instantiateModule(factory, wasm) {
-  if (wasm) {
-    try {
-      return await new Promise((resolve, reject) => {
-        factory({
-          instantiateWasm(imports, receive) {
-            WebAssembly.instantiate(wasm, imports).then((instance) => {
-              try {
-                receive(instance, wasm);
-              } catch (e) {
-                reject(e);  // a binary without this glue's exports
-              }
-            }, reject);
-            return {};
-          },
-        }).then(resolve, reject);
-      });
-    } catch {
-      // e.g. a LinkError: another build's binary beside this glue.
-    }
+  if (!(wasm instanceof WebAssembly.Module))
+    throw new WqmeshError('internal', 'wqmesh: no compiled wasm binary to instantiate the module on');
+  try {
+    return await new Promise((resolve, reject) => {
+      factory({
+        instantiateWasm(imports, receive) {
+          WebAssembly.instantiate(wasm, imports).then((instance) => {
+            try {
+              receive(instance, wasm);
+            } catch (e) {
+              reject(e);  // a binary without this glue's exports
+            }
+          }, reject);
+          return {};
+        },
+      }).then(resolve, reject);
+    });
+  } catch (e) {
+    throw new WqmeshError('internal', `wqmesh: the wasm binary is not the one of this module's glue ` +
+                                      `(another build's? rebuild: bash scripts/build.sh wasm): ${e?.message ?? e}`, { cause: e });
   }
-  return factory();
 }

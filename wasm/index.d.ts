@@ -728,9 +728,9 @@ export interface LoadOptions {
   /**
    * Where the Emscripten module is. Default: `wqmesh.mjs` beside index.mjs
    * (in a checkout, `scripts/build.sh wasm` puts it there). Its binary is
-   * compiled from the file of the same name ending in `.wasm` beside it
-   * when there is one (once per URL and package instance), else from the
-   * binary inlined in the module.
+   * the file of the same name ending in `.wasm` beside it, compiled once per
+   * URL and package instance; without it (or with another build's binary)
+   * the promise rejects with a WqmeshError `internal` naming the file.
    */
   moduleUrl?: string | URL;
 }

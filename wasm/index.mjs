@@ -1,9 +1,10 @@
 // wqmesh: the package entry, the same in Node 20+ and in browsers. The async
 // functions (check, mesh, the writers) run in a worker (worker.mjs: a module
 // Worker in browsers, a worker_threads worker in Node); the *Sync forms and
-// loadWqmesh run in the calling thread. The wasm module (wqmesh.mjs, one ES
-// module with the wasm inlined) and the option table (options.mjs, written
-// from the module's own table) sit beside this file: scripts/build.sh wasm
+// loadWqmesh run in the calling thread. The wasm module (wqmesh.mjs, the
+// Emscripten glue, and wqmesh.wasm, its binary: the package ships the binary
+// once) and the option table (options.mjs, written from the module's own
+// table) sit beside this file: scripts/build.sh wasm
 // copies them here from the build tree, and `npm pack` does the same in its
 // prepack step. See index.d.ts for the documentation.
 // SPDX-License-Identifier: GPL-3.0-or-later
@@ -20,24 +21,29 @@ export const options = Object.freeze(optionTable.map((o) => Object.freeze({ ...o
 export const defaultOptions = Object.freeze(Object.fromEntries(options.map((o) => [o.name, o.default])));
 
 const MODULE_URL = new URL('./wqmesh.mjs', import.meta.url);
-// The binary of wqmesh.mjs as a file of its own (scripts/package_wasm.mjs
-// writes it), compiled once per package instance: the calling thread and
-// every worker instantiate the same compiled module (posted to each worker
-// with its requests), so V8 compiles and optimizes the code once per process
-// or page, not once per worker. In Node the calling thread compiles it from
-// the import of this file on. In a browser the first worker compiles it
+// The binary of wqmesh.mjs (linked without SINGLE_FILE: the glue holds no
+// copy), compiled once per package instance: the calling thread and every
+// worker instantiate the same compiled module (posted to each worker with
+// its requests), so V8 compiles and optimizes the code once per process or
+// page, not once per worker. In Node the calling thread compiles it from the
+// import of this file on. In a browser the first worker compiles it
 // (WebAssembly.compileStreaming) and sends it back: Chromium may then keep
 // the optimized code in its code cache for the next page load, and it
 // serializes that code on the thread that compiled, which must not be the
 // page's (a long task of about 0.1 s per caching event during a run).
-// Without the file (e.g. a bundle that left it out), the binary inlined in
-// wqmesh.mjs, compiled by each instance.
+// Without the file (e.g. a bundle that left it out) every call rejects with a
+// WqmeshError `internal` naming it.
 const WASM_URL = new URL('./wqmesh.wasm', import.meta.url);
-const compiled = new Map();  // wasm URL -> Promise<WebAssembly.Module | null>
+const compiled = new Map();  // wasm URL -> Promise<WebAssembly.Module>
 
 function compiledModule(url) {
   const key = String(url);
-  if (!compiled.has(key)) compiled.set(key, compileWasm(url).catch(() => null));
+  if (!compiled.has(key)) {
+    const promise = compileWasm(url);
+    // Handled here (no unhandled rejection at import), and forgotten: a failed load may be retried.
+    promise.catch(() => { if (compiled.get(key) === promise) compiled.delete(key); });
+    compiled.set(key, promise);
+  }
   return compiled.get(key);
 }
 /** The wasm binary beside the Emscripten module at `url`: x.mjs -> x.wasm. */

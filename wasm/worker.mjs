@@ -27,8 +27,9 @@ let modulePromise = null;
  * The module of this worker, instantiated once, on the compiled module the
  * calling thread sends with each request (`wasm`: index.mjs compiles
  * wqmesh.wasm once per package instance); when it sends none, this worker
- * compiles `wasmUrl` itself and sends the module back for the next workers;
- * when that fails too, wqmesh.mjs's inlined binary, compiled here.
+ * compiles `wasmUrl` itself and sends the module back for the next workers.
+ * A failure (no wqmesh.wasm, a binary of another build) rejects this request
+ * with a WqmeshError `internal`; the next request tries again.
  */
 function loadModule({ wasm, wasmUrl }) {
   modulePromise ??= (async () => {
@@ -40,12 +41,14 @@ function loadModule({ wasm, wasmUrl }) {
                                         `(in a checkout: bash scripts/build.sh wasm): ${e.message}`);
     }
     let compiled = wasm ?? null;
-    if (!compiled && wasmUrl) {
-      compiled = await compileWasm(wasmUrl).catch(() => null);
-      if (compiled) port.post({ type: 'compiled', wasm: compiled, wasmUrl });
+    if (!compiled) {
+      if (!wasmUrl) throw new WqmeshError('internal', 'wqmesh worker: a request without the wasm binary or its URL');
+      compiled = await compileWasm(wasmUrl);
+      port.post({ type: 'compiled', wasm: compiled, wasmUrl });
     }
     return instantiateModule(factory, compiled);
   })();
+  modulePromise.catch(() => { modulePromise = null; });
   return modulePromise;
 }
 

@@ -1,6 +1,7 @@
 // wqmesh page: the build. Copies the page (web/), three.js and OrbitControls
 // (node_modules/three), the package's JS (wasm/*.mjs) and the wasm module
-// (build/wasm/wasm/wqmesh.mjs, one ES module with the wasm inlined) and the
+// (build/wasm/wasm/wqmesh.mjs, the Emscripten glue, and wqmesh.wasm, its
+// binary, beside it) and the
 // example models into one folder that any static host can serve as is:
 // build/web/ (nothing is fetched from another host). The bare specifiers
 // 'three' and 'three/addons/...' are rewritten to relative paths as the
@@ -26,6 +27,12 @@ const candidates = [opt('--module', process.env.WQMESH_MODULE), join(pkg, 'wqmes
 const module = candidates.find((p) => existsSync(p));
 if (!module) {
   console.error(`web/build: no wasm module (looked for ${candidates.join(', ')}); run 'bash scripts/build.sh wasm'`);
+  process.exit(1);
+}
+// Its binary: the file of the same name ending in .wasm beside it (the glue holds no copy).
+const binary = module.replace(/\.mjs$/, '.wasm');
+if (!existsSync(binary)) {
+  console.error(`web/build: ${binary}, the binary of ${module}, is missing; run 'bash scripts/build.sh wasm'`);
   process.exit(1);
 }
 
@@ -72,12 +79,10 @@ for (const f of readdirSync(dirname(module))) {
   }
 }
 copy(module, join(out, 'pkg/wasm/wqmesh.mjs'));
-// Its binary as a file of its own (scripts/package_wasm.mjs), when it is the
-// binary of that module: the package compiles it with compileStreaming.
-const binary = join(pkg, 'wqmesh.wasm');
-if (existsSync(binary) && module === join(pkg, 'wqmesh.mjs')) copy(binary, join(out, 'pkg/wasm/wqmesh.wasm'));
+copy(binary, join(out, 'pkg/wasm/wqmesh.wasm'));
 if (readFileSync(join(pkg, 'index.mjs'), 'utf8').includes('../build/wasm/wasm/wqmesh.mjs')) {
   copy(module, join(out, 'pkg/build/wasm/wasm/wqmesh.mjs'));  // an entry that looks in the build tree
+  copy(binary, join(out, 'pkg/build/wasm/wasm/wqmesh.wasm'));
 }
 // The examples.
 const models = readdirSync(join(root, 'examples/models')).filter((f) => /\.(off|stl)$/i.test(f)).sort();

@@ -2,18 +2,23 @@
 // tests/browser/lib/browser.mjs), served by scripts/serve.mjs with the strict
 // policy `Content-Security-Policy: script-src 'self' 'wasm-unsafe-eval'` on
 // every answer (no 'unsafe-eval', no inline script). The server's folder
-// holds only what the tarball holds (package.json's `files`, copied to
-// node_modules/wqmesh/ of a temporary folder), and a page imports
+// holds the packed tarball (`npm pack --ignore-scripts`: the files already
+// built beside wasm/index.mjs), unpacked into node_modules/wqmesh/ of a
+// temporary folder: its wasm/wqmesh.wasm is the one binary (the glue
+// wqmesh.mjs inlines none), and a page imports
 // /node_modules/wqmesh/wasm/index.mjs with no bundler, meshes a model in a module worker (the
 // mesh must conform, be positively oriented and keep the input volume),
 // aborts a second, long run (AbortError, within 100 ms of the abort) and
 // meshes again; wqmesh.wasm is fetched once for all of it (one compiled
-// module). No CSP violation, no page error, no failed request.
+// module). No CSP violation, no page error, no failed request. Then the
+// page loaded again with wqmesh.wasm answered 404: mesh() rejects with a
+// WqmeshError `internal` naming the file (no hang).
 // Skipped when Chromium or playwright-core is missing (an error under CI).
 // Run: node --test tests/browser/
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
-import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { test } from 'node:test';
@@ -43,10 +48,17 @@ window.smokeReady = true;
 test('the package meshes in a module worker and aborts under a strict CSP', { skip, timeout: 240000 }, async () => {
   const site = mkdtempSync(join(tmpdir(), 'wqmesh-site-'));
   const pkg = join(site, 'node_modules/wqmesh');
-  for (const f of [...JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).files, 'package.json']) {
-    mkdirSync(dirname(join(pkg, f)), { recursive: true });
-    cpSync(join(root, f), join(pkg, f));
-  }
+  mkdirSync(pkg, { recursive: true });
+  const pack = spawnSync('npm', ['pack', '--json', '--ignore-scripts', '--pack-destination', site], { cwd: root, encoding: 'utf8' });
+  assert.equal(pack.status, 0, pack.stderr);
+  const packed = JSON.parse(pack.stdout.slice(pack.stdout.search(/^\[$/m)))[0];
+  const untar = spawnSync('tar', ['-xzf', join(site, packed.filename), '-C', pkg, '--strip-components=1'], { encoding: 'utf8' });
+  assert.equal(untar.status, 0, untar.stderr);
+  const size = (f) => packed.files.find((e) => e.path === f)?.size ?? 0;
+  assert.ok(size('wasm/wqmesh.wasm') > 500000, 'the tarball holds wasm/wqmesh.wasm');
+  assert.equal(statSync(join(pkg, 'wasm/wqmesh.wasm')).size, size('wasm/wqmesh.wasm'));
+  assert.ok(size('wasm/wqmesh.mjs') > 0 && size('wasm/wqmesh.mjs') < size('wasm/wqmesh.wasm') / 4,
+            `the glue (${size('wasm/wqmesh.mjs')} bytes) holds no copy of the binary`);
   const server = await serve({ root: site, csp: CSP });
   const browser = await launchBrowser();
   try {
@@ -123,6 +135,22 @@ test('the package meshes in a module worker and aborts under a strict CSP', { sk
     // workers (the abort terminates the first).
     assert.equal(urls.filter((u) => u === '/node_modules/wqmesh/wasm/wqmesh.wasm').length, 1, 'wqmesh.wasm fetched once');
     assert.ok(!first.mainThreadHasModule);
+
+    // The same page without its binary (404): a clear error, not a hang.
+    await page.route(`${server.url}node_modules/wqmesh/wasm/wqmesh.wasm`, (route) => route.fulfill({ status: 404, body: '' }));
+    await page.goto(`${server.url}__smoke/index.html`);
+    await page.waitForFunction(() => window.smokeReady === true);
+    const missing = await page.evaluate(async (text) => {
+      try {
+        await window.wqmesh.mesh(text);
+        return { name: 'resolved' };
+      } catch (e) {
+        return { name: e.name, code: e.code, message: e.message };
+      }
+    }, spike);
+    assert.equal(missing.name, 'WqmeshError', JSON.stringify(missing));
+    assert.equal(missing.code, 'internal');
+    assert.match(missing.message, /wqmesh\.wasm .*HTTP 404/);
   } finally {
     await browser.close();
     await server.close();

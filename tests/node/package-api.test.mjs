@@ -10,9 +10,11 @@
 //   misspelt option: each a clear error;
 // - a caller run as `node --input-type=module -e ...` (flags a worker
 //   refuses) gets the same valid mesh as this process;
-// - wqmesh.wasm is the binary inlined in wqmesh.mjs; instances on one
-//   compiled module give the inlined binary's mesh; a corrupt or foreign
-//   .wasm beside a module falls back to the inlined binary;
+// - wqmesh.mjs holds no copy of its binary (the package ships wqmesh.wasm
+//   once); instances on one compiled module give the same mesh; a missing,
+//   corrupt or foreign .wasm beside a module is a WqmeshError `internal`
+//   naming it (loadWqmesh, and mesh() through a worker), never a crash at
+//   import, and a load after the file is back succeeds;
 // - abort in the middle of a run, in each phase (PUMP included): an AbortError within
 //   100 ms of the abort, and the next call succeeds; progress never goes
 //   down and the phases come in order;
@@ -454,40 +456,73 @@ process.stdout.write(JSON.stringify({ conforming: r.stats.conforming, vertices: 
   assert.ok(Math.abs(volume - signedVolume(here.vertices, here.tets, 'spike.off')) <= 1e-9 * Math.abs(volume));
 });
 
-test('wqmesh.wasm is the inlined binary; instances on one compiled module mesh as the inlined binary does', async () => {
+test('wqmesh.mjs holds no copy of its binary; instances on one compiled module mesh alike', async () => {
   const glue = join(root, 'wasm/wqmesh.mjs');
-  const inlined = readFileSync(glue, 'utf8').match(/data:application\/octet-stream;base64,([A-Za-z0-9+/=]+)/);
-  assert.ok(inlined, 'wqmesh.mjs inlines its binary');
-  assert.ok(Buffer.from(inlined[1], 'base64').equals(readFileSync(join(root, 'wasm/wqmesh.wasm'))),
-            'wasm/wqmesh.wasm is the binary of wasm/wqmesh.mjs (scripts/package_wasm.mjs)');
+  const text = readFileSync(glue, 'utf8');
+  const binary = readFileSync(join(root, 'wasm/wqmesh.wasm'));
+  assert.ok(binary.subarray(0, 4).equals(Buffer.from([0, 97, 115, 109])), 'wasm/wqmesh.wasm is a wasm binary');
+  // "\0asm" in base64 is "AGFzbQ": a SINGLE_FILE glue carries it in a data URI.
+  assert.ok(!/base64,AGFzbQ/.test(text), 'wqmesh.mjs inlines no binary');
+  assert.ok(text.length < binary.length / 4, `the glue (${text.length} bytes) is small beside the binary (${binary.length})`);
   const factory = (await import(pathToFileURL(glue).href)).default;
   const compiled = await compileWasm(pathToFileURL(join(root, 'wasm/wqmesh.wasm')));
   assert.ok(compiled instanceof WebAssembly.Module);
   const bytes = example('spike.off');
   const results = [];
-  for (const wasm of [compiled, compiled, null]) {
-    const module = await instantiateModule(factory, wasm);
+  for (let k = 0; k < 2; ++k) {
+    const module = await instantiateModule(factory, compiled);
     const r = module.mesh(bytes, {}, undefined);
     assert.equal(r.error, undefined);
     results.push(r);
   }
-  for (const r of results.slice(1)) {
-    assert.deepEqual(r.vertices, results[0].vertices);
-    assert.deepEqual(r.tets, results[0].tets);
-  }
+  assert.deepEqual(results[1].vertices, results[0].vertices);
+  assert.deepEqual(results[1].tets, results[0].tets);
   signedVolume(results[0].vertices, results[0].tets, 'spike.off');
+  await assert.rejects(instantiateModule(factory, null), (e) => e instanceof WqmeshError && e.code === 'internal');
 });
 
-test('a corrupt or foreign .wasm beside a module: loadWqmesh falls back to the inlined binary', { timeout: 60000 }, async () => {
-  const cases = { corrupt: Buffer.from('not wasm at all'), foreign: Buffer.from([0, 97, 115, 109, 1, 0, 0, 0]) };
+test('a missing, corrupt or foreign .wasm beside a module: a WqmeshError naming it; a retry once it is there loads',
+     { timeout: 60000 }, async () => {
+  const cases = { missing: null, corrupt: Buffer.from('not wasm at all'), foreign: Buffer.from([0, 97, 115, 109, 1, 0, 0, 0]) };
   for (const [name, binary] of Object.entries(cases)) {
     const dir = join(work, `beside-${name}`);
     mkdirSync(dir);
     copyFileSync(join(root, 'wasm/wqmesh.mjs'), join(dir, 'wqmesh.mjs'));
-    writeFileSync(join(dir, 'wqmesh.wasm'), binary);
-    const wq = await loadWqmesh({ moduleUrl: pathToFileURL(join(dir, 'wqmesh.mjs')) });
-    const r = wq.mesh(example('box.off'));
-    assert.equal(r.stats.conforming, true, name);
-    signedVolume(r.vertices, r.tets, `box.off beside a ${name} .wasm`);
+    if (binary) writeFileSync(join(dir, 'wqmesh.wasm'), binary);
+    const moduleUrl = pathToFileURL(join(dir, 'wqmesh.mjs'));
+    await assert.rejects(loadWqmesh({ moduleUrl }), (e) => {
+      assert.ok(e instanceof WqmeshError, `${name}: ${e}`);
+      assert.equal(e.code, 'internal');
+      assert.match(e.message, name === 'foreign' ? /not the one of this module's glue/ : /wqmesh\.wasm/, name);
+      return true;
+    });
+  }
+  // The missing file put back: the failed load is not remembered.
+  const dir = join(work, 'beside-missing');
+  copyFileSync(join(root, 'wasm/wqmesh.wasm'), join(dir, 'wqmesh.wasm'));
+  const wq = await loadWqmesh({ moduleUrl: pathToFileURL(join(dir, 'wqmesh.mjs')) });
+  const r = wq.mesh(example('box.off'));
+  assert.equal(r.stats.conforming, true);
+  signedVolume(r.vertices, r.tets, 'box.off once wqmesh.wasm is back');
+});
+
+test('a package without wqmesh.wasm: import works, mesh() and ready() reject with a WqmeshError naming it', { timeout: 60000 }, () => {
+  const dir = join(work, 'package-without-wasm');
+  mkdirSync(dir);
+  for (const f of ['index.mjs', 'core.mjs', 'worker.mjs', 'options.mjs', 'wqmesh.mjs']) copyFileSync(join(root, 'wasm', f), join(dir, f));
+  const script = `import { mesh, ready, version } from ${JSON.stringify(pathToFileURL(join(dir, 'index.mjs')).href)};
+const out = { version };
+for (const [name, call] of [['mesh', () => mesh('OFF 4 4 0 0 0 0 1 0 0 0 1 0 0 0 1 3 0 2 1 3 0 1 3 3 0 3 2 3 1 2 3')], ['ready', () => ready()]]) {
+  try { await call(); out[name] = 'resolved'; } catch (e) { out[name] = { name: e.name, code: e.code, message: e.message }; }
+}
+process.stdout.write(JSON.stringify(out));`;
+  const child = spawnSync(process.execPath, ['--input-type=module', '-e', script], { encoding: 'utf8', timeout: 50000 });
+  assert.equal(child.status, 0, `exit ${child.status}: ${child.stderr}`);
+  const out = JSON.parse(child.stdout);
+  assert.equal(typeof out.version, 'string');
+  for (const name of ['mesh', 'ready']) {
+    assert.equal(out[name].name, 'WqmeshError', `${name}: ${JSON.stringify(out[name])}`);
+    assert.equal(out[name].code, 'internal');
+    assert.match(out[name].message, /wqmesh\.wasm/);
   }
 });

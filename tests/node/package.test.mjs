@@ -2,15 +2,18 @@
 // builds the wasm module and puts it beside index.mjs) gives a tarball with
 // exactly the files of package.json's `files` (no C++ sources, tests or
 // corpus); installed into an empty temporary folder, with nothing else:
+// - the binary is in it once: wasm/wqmesh.wasm (a wasm binary, its size in
+//   the tarball's list) beside a glue wasm/wqmesh.mjs that inlines no copy;
 // - `import { mesh, check } from 'wqmesh'` meshes a model in Node (in a
 //   worker), the mesh conforming and keeping the input volume;
-// - `npx wqmesh mesh IN -o OUT --stats S.json` works from there (exit code 0,
+// - `npx wqmesh --help`, `npx wqmesh mesh IN -o OUT --stats S.json` work from there (exit code 0,
 //   the output and the native stats keys), `npx wqmesh check` prints the report;
 // - the examples of examples/node (Table 2 row, a folder with a line per
 //   file) run against the installed package;
 // - esbuild bundles an app with the worker as a second entry point
 //   (`worker=node_modules/wqmesh/wasm/worker.mjs`), and the bundle meshes with
-//   nothing but dist/ (no path into build/ or the package).
+//   nothing but dist/ and wqmesh.wasm copied into it (no path into build/ or
+//   the package); without that copy, a clear error naming wqmesh.wasm.
 // The tarball's size is printed. Needs npm (and the wasm toolchain for prepack).
 // Run: node --test tests/node/package.test.mjs
 // SPDX-License-Identifier: GPL-3.0-or-later
@@ -57,13 +60,24 @@ before(() => {
   assert.equal(i.status, 0, i.stderr);
 });
 
-test('npm pack: only the files list, the wasm module included; its size', () => {
+test('npm pack: only the files list, the wasm binary in it once; its size', () => {
   const files = packed.files.map((f) => f.path).sort();
   assert.deepEqual(files, EXPECTED_FILES);
-  const module = packed.files.find((f) => f.path === 'wasm/wqmesh.mjs');
-  assert.ok(module.size > 100000, 'the wasm module is in the tarball');
+  const size = (path) => packed.files.find((f) => f.path === path).size;
+  const glue = size('wasm/wqmesh.mjs');
+  const binary = size('wasm/wqmesh.wasm');
+  assert.ok(binary > 500000, `the wasm binary is in the tarball (${binary} bytes)`);
+  // A glue with the binary inlined (base64) would be larger than the binary itself.
+  assert.ok(glue < binary / 4, `wasm/wqmesh.mjs (${glue} bytes) holds no copy of the binary (${binary} bytes)`);
+  const installed = join(app, 'node_modules/wqmesh/wasm');
+  const wasm = readFileSync(join(installed, 'wqmesh.wasm'));
+  assert.equal(wasm.length, binary);
+  assert.ok(wasm.subarray(0, 4).equals(Buffer.from([0, 97, 115, 109])), 'wqmesh.wasm is a wasm binary');
+  // "\0asm" in base64 is "AGFzbQ"; the installed package's JS holds no data URI of it.
+  for (const f of ['wqmesh.mjs', 'index.mjs', 'worker.mjs', 'core.mjs'])
+    assert.ok(!/base64,AGFzbQ/.test(readFileSync(join(installed, f), 'utf8')), `${f} inlines no binary`);
   console.log(`# tarball ${packed.filename}: ${statSync(tarball).size} bytes packed, ${packed.unpackedSize} unpacked, ` +
-              `${files.length} files; wasm/wqmesh.mjs ${module.size} bytes`);
+              `${files.length} files; wasm/wqmesh.mjs ${glue} bytes, wasm/wqmesh.wasm ${binary} bytes`);
 });
 
 test('installed into an empty folder: import { mesh, check } from "wqmesh" meshes in Node', () => {
@@ -99,7 +113,10 @@ console.log(JSON.stringify({ valid: report.valid, stats: r.stats, volume, negati
   assert.equal(out.code, 'TypeError options');
 });
 
-test('npx wqmesh mesh and check work from the installed package', () => {
+test('npx wqmesh --help, mesh and check work from the installed package', () => {
+  const help = run('npx', ['--no', '--', 'wqmesh', '--help'], { cwd: app });
+  assert.equal(help.status, 0, help.stderr);
+  assert.match(help.stdout, /mesh IN -o OUT/);
   copyFileSync(join(root, 'examples/models/spike.off'), join(app, 'spike.off'));
   const r = run('npx', ['--no', '--', 'wqmesh', 'mesh', 'spike.off', '-o', 'spike.vtu', '--stats', 'spike.json'], { cwd: app });
   assert.equal(r.status, 0, r.stderr);
@@ -162,8 +179,14 @@ console.log(JSON.stringify({ tets: r.stats.tets, conforming: r.stats.conforming 
   // The app's bundle holds what it uses (mesh: the worker side only); the
   // worker's bundle holds the wasm module.
   assert.ok(readFileSync(join(dist, 'worker.mjs'), 'utf8').includes('createWqmeshModule'), 'the wasm module is in the worker bundle');
-  // Move dist/ away from the package: only the bundle and the worker remain.
+  // Move dist/ away from the package: only the bundle and the worker remain,
+  // and the binary, which a bundle needs beside it (esbuild does not copy it).
+  const binary = readFileSync(join(app, 'node_modules/wqmesh/wasm/wqmesh.wasm'));
   rmSync(join(app, 'node_modules'), { recursive: true, force: true });
+  const missing = run(process.execPath, [join(dist, 'bundled.mjs')], { cwd: work });
+  assert.notEqual(missing.status, 0, 'no wqmesh.wasm beside the bundle: an error');
+  assert.match(missing.stderr, /cannot load the wasm binary .*dist\/wqmesh\.wasm/s);
+  writeFileSync(join(dist, 'wqmesh.wasm'), binary);
   const r = run(process.execPath, [join(dist, 'bundled.mjs')], { cwd: work });
   assert.equal(r.status, 0, r.stderr);
   const out = JSON.parse(r.stdout);
