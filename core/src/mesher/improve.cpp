@@ -260,7 +260,7 @@ TetClass Improver::tet_class(int t) const {
 }
 
 double Improver::shortest_at(int v, const std::vector<int>& skip) const {
-  std::vector<int> S;
+  std::vector<int>& S = shortest_star_;
   star(v, S);
   set_marks_.reset(tets_.size());
   for (int t : skip) set_marks_.put(t);
@@ -298,7 +298,8 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   if (!classifier_) return;
   if (shape_.size() < tets_.size()) shape_.resize(tets_.size(), TetClassifier::Shape::good);
   if (L2_.size() < P_.size()) L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0);
-  std::vector<int> verts;
+  std::vector<int>& verts = learn_verts_;
+  verts.clear();
   for (int t : ids) {
     const Tet& T = tets_[t];
     shape_[t] = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q_[t]);
@@ -318,7 +319,8 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
     }
     // After replace() (forget(old), then learn(new); improve.h, "The
     // phase's time on large meshes"): v's shortest edge on the new tets.
-    std::vector<double> fresh(verts.size(), HUGE_VAL);
+    std::vector<double>& fresh = learn_fresh_;
+    fresh.assign(verts.size(), HUGE_VAL);
     for (int t : ids) {
       const Tet& T = tets_[t];
       for (int i = 0; i < 4; ++i) {
@@ -351,22 +353,36 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   L2_[moved] = l2;
 }
 
-Improver::ClassesBefore Improver::classes_before(const std::vector<int>& old) const {
-  ClassesBefore b;
-  if (!classifier_) return b;
+void Improver::classes_before(const std::vector<int>& old, ClassesBefore& b) const {
+  b.violations = 0;
+  b.verts.clear();
+  b.bad_used = 0;
+  if (!classifier_) {
+    b.inside.clear(), b.bad_inside.clear(), b.outside.clear(), b.outside_known.clear(), b.bad_list.clear();
+    return;
+  }
+  for (int t : old)
+    for (int v : tets_[t]) b.verts.push_back(v);
+  std::sort(b.verts.begin(), b.verts.end());
+  b.verts.erase(std::unique(b.verts.begin(), b.verts.end()), b.verts.end());
+  const std::size_t n = b.verts.size();
+  b.inside.assign(n, HUGE_VAL);
+  b.bad_inside.assign(n, 0);
+  b.outside.assign(n, HUGE_VAL);
+  b.outside_known.assign(n, 0);
+  b.bad_list.assign(n, -1);
+  // Each vertex's minimum over old's tets in the order of old (as the
+  // linear list of before did: the same values).
   for (int t : old) {
     b.violations += tet_class(t) == TetClass::violation;
     const Tet& T = tets_[t];
+    const bool bad = shape_[t] != TetClassifier::Shape::good;
     for (int i = 0; i < 4; ++i) {
-      const double m = shortest_edge2_at(P_, T, i);
-      auto it = std::find_if(b.inside.begin(), b.inside.end(), [&](const auto& e) { return e.first == T[i]; });
-      if (it == b.inside.end())
-        b.inside.push_back({T[i], m});
-      else
-        it->second = std::min(it->second, m);
+      const int at = b.index(T[i]);
+      b.inside[at] = std::min(b.inside[at], shortest_edge2_at(P_, T, i));
+      b.bad_inside[at] += bad;
     }
   }
-  return b;
 }
 
 int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& before,
@@ -376,11 +392,8 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   // L_v^2 after the change at each vertex of the new tets: the shorter of
   // its new edges and of its edges outside `old` (those stay). When its L_v
   // now is shorter than every old edge at it, that edge lies outside `old`.
-  struct After {
-    int v;
-    double l2;
-  };
-  std::vector<After> after;
+  std::vector<std::pair<int, double>>& after = after_;  // (v, L_v^2 after)
+  after.clear();
   vert_marks_.reset(P_.size());  // v -> its index in after
   for (const Tet& T : fresh)
     for (int i = 0; i < 4; ++i) {
@@ -390,30 +403,34 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
         vert_marks_.put(T[i], int(after.size()));
         after.push_back({T[i], m});
       } else {
-        after[at].l2 = std::min(after[at].l2, m);
+        after[at].second = std::min(after[at].second, m);
       }
     }
-  std::vector<int> changed;  // vertices whose L_v changes
-  for (After& a : after) {
-    auto it = std::find_if(before.inside.begin(), before.inside.end(), [&](const auto& e) { return e.first == a.v; });
-    const double inside = it == before.inside.end() ? HUGE_VAL : it->second;
-    double outside = cur(a.v);
-    if (!(outside < inside)) {
-      auto o =
-          std::find_if(before.outside.begin(), before.outside.end(), [&](const auto& e) { return e.first == a.v; });
-      if (o != before.outside.end()) {
-        outside = o->second;
+  std::vector<std::pair<int, int>>& changed = changed_;  // vertices whose L_v changes, with their index in before
+  changed.clear();
+  for (auto& [v, l2] : after) {
+    const int at = before.index(v);
+    const double inside = at < 0 ? HUGE_VAL : before.inside[at];
+    double outside = cur(v);
+    // When L_v now is not shorter than every old edge at v, it is an old
+    // edge's (L_v = min(inside, outside) at the points `before` was taken
+    // at, and the edges outside `old` do not move), so v's edges outside
+    // `old` are at least L_v: when its shortest new edge is at most L_v, that
+    // is L_v after, and v's star need not be read (the same value).
+    if (!(outside < inside) && !(l2 <= outside)) {
+      if (at >= 0 && before.outside_known[at]) {
+        outside = before.outside[at];
       } else {
-        outside = shortest_at(a.v, old);
-        before.outside.push_back({a.v, outside});
+        outside = shortest_at(v, old);
+        if (at >= 0) before.outside[at] = outside, before.outside_known[at] = 1;
       }
     }
-    a.l2 = std::min(a.l2, outside);
-    if (a.l2 != cur(a.v)) changed.push_back(a.v);
+    l2 = std::min(l2, outside);
+    if (l2 != cur(v)) changed.push_back({v, at});
   }
   const auto l2_after = [&](int v) {
     const int at = v < int(P_.size()) ? vert_marks_.get(v) : -1;
-    return at < 0 ? cur(v) : after[at].l2;
+    return at < 0 ? cur(v) : after[at].second;
   };
   int violations = 0;
   for (const Tet& T : fresh) {
@@ -426,25 +443,30 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   }
   // The tets outside `old` of a bad shape at a vertex whose L_v changes.
   int allowed = before.violations;
-  std::vector<int> S;
   set_marks_.reset(tets_.size());
   for (int t : old) set_marks_.put(t, 1);
-  for (int v : changed) {
-    int bad_inside = 0;
-    for (int t : old) bad_inside += has(t, v) && shape_[t] != TetClassifier::Shape::good;
+  for (const auto& [v, at] : changed) {
+    const int bad_inside = at < 0 ? 0 : before.bad_inside[at];
     if (v >= int(bad_at_.size()) || bad_at_[v] - bad_inside <= 0) continue;
     // v's tets of a bad shape outside old, in star order (kept in `before`:
     // shapes and stars do not change while the same change is judged again).
-    std::size_t at = 0;
-    while (at < before.bad_outside.size() && before.bad_outside[at].first != v) ++at;
-    if (at == before.bad_outside.size()) {
-      star(v, S);
-      std::vector<int> bad;
-      for (int t : S)
-        if (shape_[t] != TetClassifier::Shape::good && set_marks_.get(t) != 1) bad.push_back(t);
-      before.bad_outside.push_back({v, std::move(bad)});
+    const std::vector<int>* bad = &bad_scratch_;
+    if (at >= 0 && before.bad_list[at] >= 0) {
+      bad = &before.bad_lists[std::size_t(before.bad_list[at])];
+    } else {
+      std::vector<int>* list = &bad_scratch_;
+      if (at >= 0) {
+        if (before.bad_used == before.bad_lists.size()) before.bad_lists.emplace_back();
+        before.bad_list[at] = int(before.bad_used);
+        list = &before.bad_lists[before.bad_used++];
+      }
+      list->clear();
+      star(v, change_star_);
+      for (int t : change_star_)
+        if (shape_[t] != TetClassifier::Shape::good && set_marks_.get(t) != 1) list->push_back(t);
+      bad = list;
     }
-    for (int t : before.bad_outside[at].second) {
+    for (int t : *bad) {
       // old's tets are marked 1, the tets seen 2.
       if (set_marks_.get(t) >= 1) continue;
       set_marks_.put(t, 2);
@@ -493,7 +515,8 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   }
   for (const Tet& T : fresh)
     if (!admissible(T, size_cap)) return false;
-  const int change = classes_change(old, classes_before(old), fresh);
+  classes_before(old, accept_before_);
+  const int change = classes_change(old, accept_before_, fresh);
   return fixing_ ? change < 0 : change <= 0;
 }
 
@@ -752,8 +775,11 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     return min_sine(p[0], p[1], p[2], p[3]);
   };
   // q[i]: tet i's quality at P_[v]; order: the tets by it, worst first.
-  std::vector<double> q(tets.size()), qx(tets.size());
-  std::vector<int> order(tets.size());
+  std::vector<double>&q = ascend_q_, &qx = ascend_qx_;
+  std::vector<int>& order = ascend_order_;
+  q.assign(tets.size(), 0);
+  qx.assign(tets.size(), 0);
+  order.assign(tets.size(), 0);
   for (std::size_t i = 0; i < tets.size(); ++i) q[i] = quality_at(tets[i], P_[v]);
   // The worst at x if it beats `current` (qx then holds every tet's
   // quality), else some value <= current: the scan stops at the first tet
@@ -856,12 +882,14 @@ double Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int a
 bool Improver::smooth(int v) {
   const int axes = movable_axes(v);
   if (axes == 0) return false;
-  std::vector<int> S;
+  std::vector<int>& S = smooth_star_;
   star(v, S);
   if (S.empty()) return false;
   double worst_old = HUGE_VAL, size_cap = max_size_, lmin = HUGE_VAL;
-  const ClassesBefore before = classes_before(S);  // before v moves
-  std::vector<Tet> tets;
+  ClassesBefore& before = smooth_before_;
+  classes_before(S, before);  // before v moves
+  std::vector<Tet>& tets = smooth_tets_;
+  tets.clear();
   for (int t : S) {
     worst_old = std::min(worst_old, q_[t]);
     const Tet& T = tets_[t];
@@ -917,7 +945,8 @@ bool Improver::insert(int t) {
   const Point3 cc = geometry::circumcenter(P_[T0[0]], P_[T0[1]], P_[T0[2]], P_[T0[3]], r2);
   Point3 g{{0, 0, 0}};
   for (int v : T0) g = geometry::add(g, geometry::mul(P_[v], 0.25));
-  std::vector<Point3> candidates;
+  std::vector<Point3>& candidates = insert_candidates_;
+  candidates.clear();
   if (std::isfinite(r2)) candidates.push_back(cc);
   candidates.push_back(g);
   // Beyond Stellar's choice: for each face of t, the apex of a regular tet on
@@ -932,8 +961,11 @@ bool Improver::insert(int t) {
     candidates.push_back(geometry::add(c, geometry::mul(n, -std::sqrt(2.0 / 3) * l)));
   }
   double best = -HUGE_VAL;
-  std::vector<int> best_old;
-  std::vector<Tet> best_fresh;
+  std::vector<int>&best_old = insert_old_[1], &cav = insert_old_[0];
+  std::vector<Tet>&best_fresh = insert_fresh_[1], &fresh = insert_fresh_[0];
+  std::vector<char>& known = insert_known_;
+  best_old.clear();
+  best_fresh.clear();
   Point3 best_p{};
   const int p_id = int(P_.size());
   for (const Point3& p : candidates) {
@@ -954,15 +986,13 @@ bool Improver::insert(int t) {
     if (cur < 0) continue;
     // The cavity: tets whose circumsphere holds p, grown from cur, then
     // grown further until every outer face sees p (star-shaped).
-    std::vector<int> cav;
     sphere_cavity(cur, p, cav);
     P_.push_back(p);
-    std::vector<Tet> fresh;
     bool ok = false;
     // Each round scans the outer faces in order for the first that p does
     // not see; a face found positive stays so (its tet and p do not change),
     // so it is not tested again (known[4 i + k]: face k of cav[i]).
-    std::vector<char> known;
+    known.clear();
     cav_marks_.reset(tets_.size());
     for (int x : cav) cav_marks_.put(x);
     for (int round = 0; round < kMaxCavity; ++round) {

@@ -223,15 +223,31 @@ class Improver {
   /// both at the current points (taken before a smoothing step moves one).
   struct ClassesBefore {
     int violations = 0;
-    std::vector<std::pair<int, double>> inside;
-    /// classes_change()'s: per vertex, its shortest edge (squared) on tets
-    /// outside `old`, once computed (those tets do not change while the
-    /// same change is judged again, as smooth() does at each step).
-    mutable std::vector<std::pair<int, double>> outside;
-    /// classes_change()'s: per vertex, its tets of a bad shape outside `old`.
-    mutable std::vector<std::pair<int, std::vector<int>>> bad_outside;
+    /// The vertices of `old`, sorted (index() finds one), and per vertex
+    /// its shortest edge (squared) on old's tets and how many of old's tets
+    /// at it are of a bad shape.
+    std::vector<int> verts;
+    std::vector<double> inside;
+    std::vector<int> bad_inside;
+    /// classes_change()'s, per entry of verts, once computed (the tets
+    /// outside `old` do not change while the same change is judged again,
+    /// as smooth() does at each step): the vertex's shortest edge (squared)
+    /// on tets outside `old` (outside_known), and the index into bad_lists
+    /// of its tets of a bad shape outside `old`, in star order (-1: not yet).
+    mutable std::vector<double> outside;
+    mutable std::vector<char> outside_known;
+    mutable std::vector<int> bad_list;
+    mutable std::vector<std::vector<int>> bad_lists;  ///< the first bad_used are in use (the rest: spare capacity)
+    mutable std::size_t bad_used = 0;
+    /// The index of v in verts, or -1.
+    int index(int v) const {
+      const auto it = std::lower_bound(verts.begin(), verts.end(), v);
+      return it != verts.end() && *it == v ? int(it - verts.begin()) : -1;
+    }
   };
-  ClassesBefore classes_before(const std::vector<int>& old) const;
+  /// Fills b for `old` (b's vectors are reused: no allocation once they are
+  /// large enough).
+  void classes_before(const std::vector<int>& old, ClassesBefore& b) const;
   /// How many more violations there are when `old` is replaced by `fresh`
   /// at the current points (negative: fewer; 0 without balls).
   int classes_change(const std::vector<int>& old, const ClassesBefore& before, const std::vector<Tet>& fresh) const;
@@ -363,6 +379,28 @@ class Improver {
   mutable Marks set_marks_;   ///< shortest_at()'s skip, classes_change()'s and replace()'s old
   mutable Marks cav_marks_;   ///< the cavity of insert(), sphere_cavity() and boundary_cavity()
   mutable Marks vert_marks_;  ///< classes_change()'s vertices of the new tets
+  /// Scratch kept to spare allocations (issue 15; they change no result):
+  /// accept()'s and smooth()'s ClassesBefore, classes_change()'s vertices of
+  /// the new tets (vertex, L_v^2 after) and those whose L_v changes (vertex,
+  /// index in the ClassesBefore), the stars read by shortest_at() and
+  /// classes_change(), learn()'s vertices and their shortest new edges.
+  mutable ClassesBefore accept_before_, smooth_before_;
+  mutable std::vector<std::pair<int, double>> after_;
+  mutable std::vector<std::pair<int, int>> changed_;
+  mutable std::vector<int> shortest_star_, change_star_, bad_scratch_, learn_verts_;
+  std::vector<double> learn_fresh_;
+  /// smooth()'s star and its tets, ascend()'s qualities and order (neither
+  /// runs inside another call of itself).
+  std::vector<int> smooth_star_, ascend_order_;
+  std::vector<Tet> smooth_tets_;
+  std::vector<double> ascend_q_, ascend_qx_;
+  /// insert()'s candidates, cavity [0] and best cavity [1], their new tets,
+  /// and the faces known to see the point; contraction()'s star of u.
+  std::vector<Point3> insert_candidates_;
+  std::vector<int> insert_old_[2];
+  std::vector<Tet> insert_fresh_[2];
+  std::vector<char> insert_known_;
+  mutable std::vector<int> contract_star_u_;
   /// The smallest dihedral angle (degrees) of live tet t, kept from its last
   /// computation until forget_dihedral(t) (wherever q_[t] is set anew), so
   /// that mesh_worst() does not recompute every tet's angles on each call.

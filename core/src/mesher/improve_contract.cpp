@@ -273,7 +273,7 @@ double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
       if (x == v) x = u;
     fresh.push_back(T);
   }
-  std::vector<int> SU;
+  std::vector<int>& SU = contract_star_u_;
   star(u, SU);
   for (int t : SU)
     for (int x : tets_[t]) {
