@@ -56,7 +56,31 @@ using RCb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell
 // The label byte of the scans (triangulation.h), in the cell's padding.
 using Cb3 = CGAL::Triangulation_cell_base_with_info_3<char, K, RCb3>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
-using Rt = CGAL::Regular_triangulation_3<K, Tds3>;
+using RtBase = CGAL::Regular_triangulation_3<K, Tds3>;
+// CGAL's regular triangulation with one more way in (beyond the paper, issue
+// 15): the insertion into a conflict zone the caller found, as CGAL's own
+// insert does it once its find_conflicts is done (the hidden-point
+// visitor's bookkeeping, then the small-hole or the general star of the new
+// vertex), so that a zone found once is not searched again.
+class Rt : public RtBase {
+ public:
+  /// Inserts p into the hole of `cells`, the cells whose power spheres hold
+  /// p, marked in conflict (tds_data), in the order CGAL's find_conflicts
+  /// gives them from the cell that holds p, with `facets` its boundary
+  /// facets in its order (the last one starts the star). The same
+  /// triangulation, cells and vertex cells as insert(p, lt, c, li, lj) with
+  /// that zone. Needs dimension 3.
+  template <class Cells, class Facets>
+  Vertex_handle insert_in_found_zone(const Weighted_point& p, const Cells& cells, const Facets& facets) {
+    get_hidden_point_visitor().process_cells_in_conflict(cells.begin(), cells.end());
+    const Vertex_handle v =
+        tds().is_small_hole(facets.size())
+            ? _insert_in_small_hole(p, cells, facets)
+            : _insert_in_hole(p, cells.begin(), cells.end(), facets.back().first, facets.back().second);
+    get_hidden_point_visitor().reinsert_vertices(v);
+    return v;
+  }
+};
 // 4 vertices, 4 neighbours, the TDS mark and the label byte (72 bytes
 // natively); the bound leaves a pointer's room for a compiler's padding, not
 // the list's three.
@@ -263,6 +287,51 @@ struct RegularTriangulation::Impl {
   mutable std::vector<Rt::Cell_handle> conflict_scratch;
   bool cavity_valid = false;
   std::vector<Tet> cavity;
+  /// replay_zone's output: the kept zone in find_conflicts' order from the
+  /// cell that holds the point, and its boundary facets.
+  std::vector<Rt::Cell_handle> replay_cells, replay_stack;
+  std::vector<Rt::Facet> replay_facets;
+  std::size_t kept_zone_insertions = 0;  ///< see RegularTriangulation::kept_zone_insertions
+  /// The kept zone (conflict_scratch, the cells of `zone`) as CGAL's
+  /// find_conflicts would give it from c (the cell the location found):
+  /// the same depth-first walk (a stack, the neighbours in index order),
+  /// with membership read from marks instead of the power test, into
+  /// replay_cells and replay_facets, the cells left marked in conflict as
+  /// insert_in_found_zone needs them. Returns false, every mark cleared,
+  /// when c is not in the zone or the walk from c does not reach all of it
+  /// (then the zone is not the one the insertion would find: the caller
+  /// inserts by CGAL's own search). Beyond the paper (issue 15).
+  bool replay_zone(Rt::Cell_handle c) {
+    // "On boundary" marks a cell of the zone not reached yet, "in conflict"
+    // one reached; the cells outside the zone are clear.
+    for (const Rt::Cell_handle& x : conflict_scratch) x->tds_data().mark_on_boundary();
+    replay_cells.clear();
+    replay_facets.clear();
+    replay_stack.clear();
+    if (c->tds_data().is_on_boundary()) {
+      c->tds_data().mark_in_conflict();
+      replay_cells.push_back(c);
+      replay_stack.push_back(c);
+    }
+    while (!replay_stack.empty()) {
+      const Rt::Cell_handle x = replay_stack.back();
+      replay_stack.pop_back();
+      for (int i = 0; i < 4; ++i) {
+        const Rt::Cell_handle y = x->neighbor(i);
+        if (y->tds_data().is_in_conflict()) continue;
+        if (y->tds_data().is_on_boundary()) {
+          y->tds_data().mark_in_conflict();
+          replay_cells.push_back(y);
+          replay_stack.push_back(y);
+          continue;
+        }
+        replay_facets.emplace_back(x, i);
+      }
+    }
+    if (replay_cells.size() == conflict_scratch.size() && !replay_facets.empty()) return true;
+    for (const Rt::Cell_handle& x : conflict_scratch) x->tds_data().clear();
+    return false;
+  }
   /// conflict_cells' common end: the cells whose power spheres hold wp
   /// (p with weight w), found by CGAL's walk from c, a cell of that set, into
   /// `out`, and remembered as the last zone asked for.
@@ -301,7 +370,16 @@ struct RegularTriangulation::Impl {
       return c->vertex(li);
     }
     const std::size_t before = rt.number_of_vertices();
-    const Rt::Vertex_handle v = rt.insert(wp, lt, c, li, lj);
+    // The zone kept for this point is inserted without a second search
+    // (beyond the paper, issue 15): the same cells in the same order, so the
+    // same triangulation as CGAL's insert.
+    Rt::Vertex_handle v;
+    if (known && rt.dimension() == 3 && replay_zone(c)) {
+      v = rt.insert_in_found_zone(wp, replay_cells, replay_facets);
+      ++kept_zone_insertions;
+    } else {
+      v = rt.insert(wp, lt, c, li, lj);
+    }
     if (v == Rt::Vertex_handle()) return v;
     if (rt.number_of_vertices() != before + 1)
       throw std::logic_error("RegularTriangulation: a weighted insertion hid an existing vertex");
@@ -328,6 +406,8 @@ int RegularTriangulation::insert(const Point3& p, double w, int hint) {
   impl_->weights.push_back(w);
   return id;
 }
+
+std::size_t RegularTriangulation::kept_zone_insertions() const { return impl_->kept_zone_insertions; }
 
 void RegularTriangulation::insert_all(const std::vector<Point3>& points) {
   std::vector<WPoint> wps;

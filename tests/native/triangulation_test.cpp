@@ -334,6 +334,85 @@ TEST(Triangulation, LastCavityIsTheSetOfCellsTheInsertionDestroyed) {
   EXPECT_EQ(t.last_cavity(), nullptr);
 }
 
+TEST(Triangulation, AnInsertionIntoAKeptZoneBuildsTheSameTriangulationCellForCell) {
+  // insert() after conflict_cells of the same point reuses that zone (issue
+  // 15: no second search) and must leave what CGAL's own insertion leaves:
+  // the same cells in the same order with the same adjacency (cell_graph)
+  // and the same cell of each vertex (the order of incident_cells). Twin
+  // triangulations get the same points, one with a conflict_cells before
+  // each insertion, asked in the ways the mesher asks: with the insertion's
+  // hint, another hint, the point's own cell as the start (rule 6's
+  // circumcentre), a far start. The points: random ones, lattice points
+  // (cospherical sets and points on edges and facets, where the cell the
+  // location finds depends on its walk), points outside the hull (zones with
+  // infinite cells).
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  RegularTriangulation kept, plain;
+  for (int i = 0; i < 60; ++i) {
+    const Point3 p{{u(rng), u(rng), u(rng)}};
+    kept.insert(p, 0, i - 1);
+    plain.insert(p, 0, i - 1);
+  }
+  std::vector<Tet> zone, cells;
+  std::vector<CellRef> refs;
+  std::size_t asked = 0;
+  for (int i = 0; i < 400; ++i) {
+    Point3 p;
+    const int kind = i % 4;
+    if (kind == 0) {
+      p = {{u(rng), u(rng), u(rng)}};
+    } else if (kind == 1) {  // a lattice of step 1/4: many cospherical and coplanar points
+      p = {{std::floor(u(rng) * 5) / 4, std::floor(u(rng) * 5) / 4, std::floor(u(rng) * 5) / 4}};
+    } else if (kind == 2) {  // the circumcentre of a cell (rule 6)
+      kept.finite_cells(cells, refs);
+      const Tet& c = cells[i % cells.size()];
+      double r2;
+      p = wqmesh::geometry::circumcenter(kept.point(c[0]), kept.point(c[1]), kept.point(c[2]), kept.point(c[3]), r2);
+      if (!std::isfinite(r2) || std::fabs(p[0]) > 3 || std::fabs(p[1]) > 3 || std::fabs(p[2]) > 3) continue;
+    } else {  // outside the hull now and then
+      p = {{1.6 * u(rng) - 0.3, 1.6 * u(rng) - 0.3, 1.6 * u(rng) - 0.3}};
+    }
+    const int n = kept.number_of_vertices(), hint = (i * 7) % n;
+    switch (i % 5) {
+      case 0: kept.conflict_cells(p, 0, hint, zone); break;
+      case 1: kept.conflict_cells(p, 0, (hint + n / 2) % n, zone); break;
+      case 2:
+        kept.finite_cells(cells, refs);
+        kept.conflict_cells(p, 0, hint, zone, refs[(i * 31) % refs.size()]);
+        break;
+      case 3:
+        if (kind == 2) {
+          kept.finite_cells(cells, refs);
+          kept.conflict_cells(p, 0, hint, zone, refs[i % refs.size()]);  // its own cell, as rule 6 asks
+        } else {
+          kept.conflict_cells(p, 0, hint, zone);
+        }
+        break;
+      default: zone.clear();  // not asked: CGAL's own search
+    }
+    if (!zone.empty()) ++asked;
+    const int a = kept.insert(p, 0, hint), b = plain.insert(p, 0, hint);
+    ASSERT_EQ(a, b) << "point " << i;
+    if (i % 20 == 0 || i == 399) {
+      const RegularTriangulation::CellGraph ga = kept.cell_graph(), gb = plain.cell_graph();
+      ASSERT_EQ(ga.cells, gb.cells) << "after point " << i;
+      ASSERT_EQ(ga.neighbor, gb.neighbor) << "after point " << i;
+      std::vector<Tet> ia, ib;
+      for (int v = 0; v < kept.number_of_vertices(); ++v) {
+        kept.incident_cells(v, ia);
+        plain.incident_cells(v, ib);
+        ASSERT_EQ(ia, ib) << "vertex " << v << " after point " << i;
+      }
+    }
+  }
+  EXPECT_GT(asked, 200u);
+  // Every zone asked for was of a point that was not yet a vertex, in
+  // dimension 3: each of those insertions reused its zone.
+  EXPECT_EQ(kept.kept_zone_insertions(), asked);
+  EXPECT_EQ(plain.kept_zone_insertions(), 0u);
+}
+
 TEST(Triangulation, WeightChangeKeepsIdAndPowerDiagramProperty) {
   RegularTriangulation t;
   std::mt19937 rng(3);
