@@ -505,6 +505,17 @@ class Improver {
   /// false when no cavity is star-shaped from p within kMaxCavity tets.
   bool boundary_cavity(int t, int b, int f, const Point3& p, std::vector<int>& cav, std::vector<Tet>& fresh,
                        std::vector<std::pair<int, Tri3>>& fan) const;
+  /// insert_boundary()'s and boundary_cavity()'s working vectors, kept to
+  /// spare their allocations per candidate (the phase's time, issue 14: on
+  /// wedge-1 about 25,000 candidates); no result depends on what they held.
+  struct BoundaryScratch {
+    std::vector<int> cav, flat;
+    std::vector<Tet> fresh;
+    std::vector<std::pair<int, Tri3>> fan;
+    std::vector<char> known;
+    std::vector<std::pair<int, int>> edges, outline;
+  };
+  mutable BoundaryScratch boundary_scratch_;
   std::vector<std::uint8_t> slide_;
   /// Per facet: the axes its plane runs along, and one input corner (-1: none).
   std::vector<int> facet_axes_, facet_corner_;

@@ -303,17 +303,23 @@ bool Improver::insert_boundary(int t) {
         Point3 p = P_[base];
         for (int c = 0; c < 3; ++c)
           if (axes >> c & 1) p[c] = aim[c];
-        std::vector<int> cav;
-        std::vector<Tet> fresh;
-        std::vector<std::pair<int, Tri3>> fan;
+        std::vector<int>& cav = boundary_scratch_.cav;
+        std::vector<Tet>& fresh = boundary_scratch_.fresh;
+        std::vector<std::pair<int, Tri3>>& fan = boundary_scratch_.fan;
         if (!boundary_cavity(t, b, f, p, cav, fresh, fan)) continue;
         // The new point is first slid along the facet's axes by the smoothing
         // ascent on its own star (the cavity stays), then the insertion is judged.
         P_.push_back(p);
         const double placed = ascend_new_point(p_id, fresh, axes);
         vtet_.push_back(-1);
+        // placed is what accept() computes as the new worst, bit for bit
+        // (ascend_new_point): outside fix_violations() (beats()) a candidate
+        // that does not beat the cavity's worst is refused there; spare it.
+        double worst_old = HUGE_VAL;
+        for (int c : cav) worst_old = std::min(worst_old, q_[c]);
+        const bool hopeless = !fixing_ && !(placed > worst_old);
         double w;
-        if (placed > best && accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {
+        if (placed > best && !hopeless && accept(cav, fresh, w) && w > best && !more_bad_tets(cav, fresh)) {
           best = w;
           best_old = cav;
           best_fresh = fresh;
@@ -401,11 +407,13 @@ bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector
   const int p_id = int(P_.size());
   // As in insert(): a face found positive is not tested again (known[4 i + k]:
   // face k of cav[i]).
-  std::vector<char> known;
+  std::vector<char>& known = boundary_scratch_.known;
+  known.clear();
+  std::vector<int>& flat = boundary_scratch_.flat;  // the facet's triangles on the cavity's surface
   for (int round = 0; round < kMaxCavity; ++round) {
     fresh.clear();
     known.resize(4 * cav.size(), 0);
-    std::vector<int> flat;  // the facet's triangles on the cavity's surface
+    flat.clear();
     int grow = -2;
     for (std::size_t i = 0; i < cav.size(); ++i) {
       const int x = cav[i];
@@ -436,10 +444,12 @@ bool Improver::boundary_cavity(int t, int b, int f, const Point3& p, std::vector
       // The outline of the facet's triangles: the directed edges of no other
       // of them; one cycle of |flat| + 2 edges (a disk without inner vertices).
       if (std::find(flat.begin(), flat.end(), b) == flat.end()) return false;
-      std::vector<std::pair<int, int>> edges;
+      std::vector<std::pair<int, int>>& edges = boundary_scratch_.edges;
+      edges.clear();
       for (int c : flat)
         for (int j = 0; j < 3; ++j) edges.push_back({bnd_[c][j], bnd_[c][(j + 1) % 3]});
-      std::vector<std::pair<int, int>> outline;
+      std::vector<std::pair<int, int>>& outline = boundary_scratch_.outline;
+      outline.clear();
       for (const auto& e : edges)
         if (std::find(edges.begin(), edges.end(), std::make_pair(e.second, e.first)) == edges.end())
           outline.push_back(e);
