@@ -239,15 +239,22 @@ TEST(Improve, BoundaryEdgeBetweenTwoFacetsNeverFlips) {
   EXPECT_EQ(c.r.improve.changes(), 0u);
 }
 
-TEST(Improve, SmoothingMovesAnInteriorVertexAndNeverAFacetVertex) {
-  // An octahedron with an interior vertex off its centre: smoothing moves it
-  // and raises the worst tet.
+/// An octahedron (vertices 0-5) cut into eight tets by an interior vertex 6
+/// off its centre; the hull's faces are boundary triangles.
+Config octahedron_off_centre() {
   Config c;
   c.r.mesh.vertices = {{{1, 0, 0}}, {{-1, 0, 0}}, {{0, 1, 0}},       {{0, -1, 0}},
                        {{0, 0, 1}}, {{0, 0, -1}}, {{0.45, 0.3, 0.2}}};
   const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (const auto& f : faces) c.add_tet(f[0], f[1], f[2], 6);
   c.close();
+  return c;
+}
+
+TEST(Improve, SmoothingMovesAnInteriorVertexAndNeverAFacetVertex) {
+  // An octahedron with an interior vertex off its centre: smoothing moves it
+  // and raises the worst tet.
+  Config c = octahedron_off_centre();
   const double before = c.worst();
   {
     MeshResult copy = c.r;
@@ -1167,6 +1174,45 @@ std::unique_ptr<Unimproved> unimproved(const std::string& f) {
   u->im = std::make_unique<Improver>(u->r, u->opt.rho0, u->opt.max_size);
   u->im->set_classes(&u->balls, u->opt.theta_deg);
   return u;
+}
+
+TEST(Improve, AVertexSmoothedOntoAVertexBallIsNeverContracted) {
+  // improve_contract.cpp's contract: a vertex on or inside the sphere of a
+  // vertex ball is never removed. The octahedron of
+  // SmoothingMovesAnInteriorVertexAndNeverAFacetVertex, its interior vertex
+  // 6 off the centre: smoothing moves it towards the centre. A vertex ball
+  // around where it goes holds it after the move but not before, so its
+  // removal is first allowed (contract_targets, which reads whether it is
+  // on a ball), then refused once it was smoothed in.
+  Config c = octahedron_off_centre();
+  for (int v = 0; v < 6; ++v) c.r.input_vertex[v] = v;
+  const Point3 from = c.r.mesh.vertices[6];
+  // Where smoothing takes vertex 6 (the class guard on, with a vertex ball
+  // far away).
+  Point3 to;
+  {
+    MeshResult copy = c.r;
+    const mesher::ProtectingBalls far = index_of({{{{5, 5, 5}}, 0.1, true}});
+    Improver im(copy, 2.2, 0);
+    im.set_classes(&far, 3);
+    ASSERT_TRUE(im.smooth(6));
+    to = im.points()[6];
+  }
+  const double moved = std::sqrt(geometry::dist2(from, to));
+  ASSERT_GT(moved, 0);
+  const ProtectingBall ball{to, 0.5 * moved, true};
+  const mesher::ProtectingBalls balls = index_of({ball});
+  Improver im(c.r, 2.2, 0);
+  im.set_classes(&balls, 3);
+  std::vector<int> targets;
+  im.contract_targets(6, targets);
+  ASSERT_FALSE(targets.empty()) << "outside the ball, vertex 6 may be removed";
+  ASSERT_TRUE(im.smooth(6));
+  ASSERT_LE(std::sqrt(geometry::dist2(im.points()[6], ball.center)), ball.radius) << "smoothed into the ball";
+  im.contract_targets(6, targets);
+  EXPECT_TRUE(targets.empty()) << "inside a vertex ball, vertex 6 is never removed";
+  EXPECT_FALSE(im.contract_vertex(6));
+  EXPECT_FALSE(im.removed(6));
 }
 
 TEST(Improve, TheGuardsClassesAreThoseOfTheStatisticsBeforeAndAfterThePhase) {

@@ -931,6 +931,10 @@ bool Improver::smooth(int v) {
     forget_dihedral(t);
   }
   learn(S, v, from);
+  // improve_contract.cpp's promise: a vertex on or inside a vertex ball's
+  // sphere is never removed. The move can take v onto or into one (the
+  // ascent knows no balls), so whether it lies on one is read anew.
+  if (v < int(ball_point_.size())) ball_point_[v] = -1;
   ++clock_;
   for (int t : S) touch(tets_[t]);
   ++st_.smoothed;

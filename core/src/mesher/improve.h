@@ -605,7 +605,8 @@ class Improver {
   Removal contract_removal_;
   std::vector<Tet> contract_fresh_[2];
   std::vector<std::pair<int, std::array<int, 3>>> contract_boundary_[2];
-  /// Whether v lies on or inside the sphere of a vertex ball (cached).
+  /// Whether v lies on or inside the sphere of a vertex ball (cached in
+  /// ball_point_ until v moves: smooth() clears its entry).
   bool on_vertex_ball(int v) const;
   /// Called by finish(): drops the removed vertices from r (renumbering the
   /// others in order; input vertices keep their indices) and the deleted
