@@ -74,7 +74,7 @@ for (const f of readdirSync(pkg)) {
 }
 // Generated JS beside the module (e.g. an options table), if the build writes any.
 for (const f of readdirSync(dirname(module))) {
-  if (/\.mjs$/.test(f) && !/^wqmesh/.test(f) && !existsSync(join(out, 'pkg/wasm', f))) {
+  if (/\.mjs$/.test(f) && !/^wqmesh/.test(f) && f !== 'cli.mjs' && !existsSync(join(out, 'pkg/wasm', f))) {
     copy(join(dirname(module), f), join(out, 'pkg/wasm', f));
   }
 }
