@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // wqmesh: the points INITIALIZE and SOS put on the spheres of the vertex balls
 // (paper, section 4.1; issue 14, item 1). SOS splits a shield arc a little off
-// its middle (Sector::sos_angle, beyond the paper), so that where the input
+// its middle (Sector::sos_direction, beyond the paper), so that where the input
 // is symmetric (a mirror, or the two facets of a sharp edge with equal
 // sectors) no four points of one sphere lie on a small circle: such four
 // points made the flat tets of the paper's construction. Checked on
@@ -133,7 +133,7 @@ std::string describe(const mesher::Mesher& m, int v) {
   std::ostringstream os;
   os << "vertex " << v << " on " << kOn[int(x.on)] << " " << x.element;
   if (x.sector >= 0)
-    os << " (SOS point, arc angle " << x.angle << ")";
+    os << " (SOS point of sector " << x.sector << ")";
   else if (x.on == mesher::On::edge && x.ball >= 0)
     os << " (ball point)";
   return os.str();
@@ -220,22 +220,62 @@ TEST(Construction, SosSplitsOffTheMiddleAtTheDocumentedFraction) {
     const double a = (in.plc.vertices[u][0] == 0 ? 20 : 80) * kPi / 180;
     EXPECT_NEAR(dom.sos_asymmetry[u], std::min(kPi / 1000, a * a / 64), 1e-15) << u;
   }
+  // The split direction of an arc of angle theta from a counter-clockwise
+  // to b, against angles (the code has none): at theta/2 + atan(2 delta
+  // sin(theta/2)) from a, on the unit circle of the plane; the paper's middle
+  // at delta = 0; for theta up to pi at the fraction [1/2 + 0.636 delta,
+  // 1/2 + delta] of the arc.
+  Sector s;
+  s.center = {{0, 0, 0}};
+  s.n = {{0, 0, 1}};
+  s.r = 1;
+  const auto dir = [](double t) { return Point3{{std::cos(t), std::sin(t), 0}}; };
+  const auto angle_of = [](const Point3& d) {
+    const double t = std::atan2(d[1], d[0]);
+    return t < 0 ? t + 2 * kPi : t;
+  };
+  for (double delta : {0.0, 1e-9, 3e-5, kPi / 1000}) {
+    s.delta = delta;
+    for (double from : {0.0, 0.3, 2.0, 4.5})
+      for (double theta : {1e-4, 0.1, 1.0, 2.0, 2.1, 3.0, kPi, 4.0, 6.0, 6.27}) {
+        SCOPED_TRACE(std::to_string(delta) + " " + std::to_string(from) + " " + std::to_string(theta));
+        const Point3 d = s.sos_direction(dir(from), dir(from + theta));
+        EXPECT_NEAR(mesher::norm(d), 1, 1e-15);
+        EXPECT_EQ(d[2], 0);
+        const double omega = std::atan2(2 * delta * std::sin(theta / 2), 1);
+        double off = angle_of(d) - std::fmod(from + theta / 2 + omega, 2 * kPi);
+        off -= 2 * kPi * std::round(off / (2 * kPi));
+        EXPECT_LT(std::fabs(off), 1e-14 / std::min(1.0, theta));
+        if (theta <= kPi) {
+          EXPECT_GE(omega / theta, (2 / kPi) * delta * (1 - 2e-5));
+          EXPECT_LE(omega / theta, delta * (1 + 1e-12));
+        }
+        // holds: the arc's own directions (ends included), not the rest.
+        // (At pi exactly the rounding of cos and sin here decides.)
+        if (theta != kPi) EXPECT_EQ(s.below_pi(dir(from), dir(from + theta)), theta < kPi);
+        for (double f : {0.0, 0.25, 0.5, 0.999, 1.0})
+          EXPECT_TRUE(s.holds(dir(from), dir(from + theta), dir(from + f * theta))) << f;
+        for (double f : {0.001, 0.5, 0.999})
+          EXPECT_FALSE(s.holds(dir(from), dir(from + theta), dir(from + theta + f * (2 * kPi - theta)))) << f;
+      }
+  }
   // INITIALIZE splits a sector until every arc is below pi (section 4.1),
-  // splitting the larger arc [0, phi t] again: after n splits the arcs are
-  // phi^n span and (1 - phi) phi^k span, k < n, all below pi, and one split
-  // fewer would leave phi^(n-1) span at pi or more.
-  for (double phi : {0.5 + 1e-9, 0.5 + kPi / 1000}) {
-    Sector s;
-    s.phi = phi;
-    EXPECT_NEAR(s.sos_angle(1, 3), 1 + 2 * phi, 1e-15);
-    for (double span : {0.5, 0.99, 1.0, 1.5, 1.9, 1.99, 1.999}) {
-      SCOPED_TRACE(span);
-      s.span = span * kPi;
+  // splitting the larger arc, from e1 to the last point, again: none below
+  // pi, one below 2 pi - 2 omega, else two; then every arc is below pi.
+  for (double delta : {1e-9, kPi / 1000}) {
+    s.delta = delta;
+    s.e1 = dir(0.7);
+    for (double span : {0.5, 0.99, 1.0, 1.5, 1.9, 1.99, 1.996, 1.999}) {
+      SCOPED_TRACE(std::to_string(delta) + " " + std::to_string(span));
+      s.eb = dir(0.7 + span * kPi);
       const int n = s.initial_splits();
-      EXPECT_EQ(n, span < 1 ? 0 : span * phi < 1 ? 1 : 2);
-      EXPECT_LT(std::pow(phi, n) * s.span, kPi);
-      for (int k = 0; k < n; ++k) EXPECT_LT((1 - phi) * std::pow(phi, k) * s.span, kPi);
-      if (n > 0) EXPECT_GE(std::pow(phi, n - 1) * s.span, kPi);
+      const double omega = std::atan2(2 * delta * std::sin(span * kPi / 2), 1);
+      EXPECT_EQ(n, span < 1 ? 0 : span * kPi < 2 * kPi - 2 * omega ? 1 : 2);
+      std::vector<Point3> ends{s.eb};
+      Point3 b = s.eb;
+      for (int k = 0; k < n; ++k) ends.push_back(b = s.sos_direction(s.e1, b));
+      ends.push_back(s.e1);  // from eb clockwise: the arcs are between neighbours
+      for (std::size_t k = 0; k + 1 < ends.size(); ++k) EXPECT_TRUE(s.below_pi(ends[k + 1], ends[k])) << k;
     }
   }
 }

@@ -119,13 +119,14 @@ inline void expect_no_flat_tets(const TetMesh& m) {
 }
 
 /// p is the SOS point of the shield subsegment ab of the ball of radius r at
-/// u (section 4.1, split at the fraction phi, Sector::sos_angle): on the
-/// sphere, and with chords to a and b of 2 r sin(phi theta / 2) and
-/// 2 r sin((1 - phi) theta / 2), in either order (the key of ab does not say
-/// which end is t = 0), theta the arc from a to b: the angle a u b, or 2 pi
-/// minus it for a sector of pi or more split at INITIALIZE. `tol` is
-/// relative to r.
-inline void expect_sos_point(const Point3& p, const Point3& a, const Point3& b, const Point3& u, double r, double phi,
+/// u (section 4.1, split off the middle by delta, Sector::sos_direction): on
+/// the sphere, at the angles theta/2 + omega and theta/2 - omega from a and
+/// b, omega = atan(2 delta sin(theta/2)), i.e. with chords of
+/// 2 r sin((theta/2 +- omega) / 2), in either order (the key of ab does not
+/// say which end is the arc's start), theta the arc from a to b: the angle
+/// a u b, or 2 pi minus it for a sector of pi or more split at INITIALIZE.
+/// `tol` is relative to r.
+inline void expect_sos_point(const Point3& p, const Point3& a, const Point3& b, const Point3& u, double r, double delta,
                              double tol) {
   using mesher::dist2;
   EXPECT_NEAR(std::sqrt(dist2(p, u)), r, tol * r);
@@ -134,7 +135,9 @@ inline void expect_sos_point(const Point3& p, const Point3& a, const Point3& b, 
   const double pa = std::sqrt(dist2(p, a)), pb = std::sqrt(dist2(p, b));
   double off = std::numeric_limits<double>::infinity();
   for (double theta : {angle, 2 * mesher::kPi - angle}) {
-    const double c1 = 2 * r * std::sin(phi * theta / 2), c2 = 2 * r * std::sin((1 - phi) * theta / 2);
+    // At theta/2 + omega from one end, theta/2 - omega from the other.
+    const double omega = std::atan(2 * delta * std::sin(theta / 2));
+    const double c1 = 2 * r * std::sin((theta / 2 + omega) / 2), c2 = 2 * r * std::sin((theta / 2 - omega) / 2);
     off = std::min(
         {off, std::max(std::fabs(pa - c1), std::fabs(pb - c2)), std::max(std::fabs(pa - c2), std::fabs(pb - c1))});
   }

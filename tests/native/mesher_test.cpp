@@ -439,7 +439,7 @@ TEST(MesherRules, SplitePutsTheMidpointOrTheSosPoint) {
     break;
   }
   // A shield subsegment is split at its SOS point: on the sphere of the
-  // vertex ball, on the arc off its middle (Sector::sos_angle, issue 14).
+  // vertex ball, on the arc off its middle (Sector::sos_direction, issue 14).
   for (const auto& [k, s] : m.subcomplex().subsegments()) {
     if (s.sector < 0) continue;
     const Point3 a = m.triangulation().point(s.a), b = m.triangulation().point(s.b);
@@ -449,7 +449,7 @@ TEST(MesherRules, SplitePutsTheMidpointOrTheSosPoint) {
     const int u = m.vertices()[s.a].ball;
     ASSERT_GE(u, 0);
     EXPECT_GT(dom.sos_asymmetry[u], 0);
-    invariants::expect_sos_point(ins.p, a, b, dom.p.vertices[u], dom.ball_radius[u], 0.5 + dom.sos_asymmetry[u], 1e-12);
+    invariants::expect_sos_point(ins.p, a, b, dom.p.vertices[u], dom.ball_radius[u], dom.sos_asymmetry[u], 1e-12);
     break;
   }
 }
@@ -675,7 +675,7 @@ TEST(MesherRules, EveryRuleInsertsThePointThePaperNames) {
           const int u = m.vertices()[a].ball;
           ASSERT_GE(u, 0);
           invariants::expect_sos_point(ins.p, tri.point(a), tri.point(b), dom.p.vertices[u], dom.ball_radius[u],
-                                       0.5 + dom.sos_asymmetry[u], 1e-9);
+                                       dom.sos_asymmetry[u], 1e-9);
         } else {
           EXPECT_EQ(ins.p, mesher::midpoint(tri.point(a), tri.point(b)));
         }

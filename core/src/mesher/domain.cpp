@@ -13,53 +13,79 @@ namespace wqmesh::mesher {
 
 using namespace geometry;
 
-Point3 Sector::at(double t) const { return add(center, add(mul(e1, r * std::cos(t)), mul(e2, r * std::sin(t)))); }
+bool Sector::holds(const Point3& da, const Point3& db, const Point3& d) const {
+  const bool after_a = dot(cross(da, d), n) >= 0, before_b = dot(cross(d, db), n) >= 0;
+  // Below pi the arc is where both hold; from pi on, where d is not strictly
+  // inside the complement, the arc below pi from db to da.
+  return below_pi(da, db) ? after_a && before_b : after_a || before_b;
+}
 
 // ---- the SOS split point (section 4.1; beyond the paper) ------------------------
 // The paper splits a shield arc at its middle. Where the input is symmetric
 // that puts four points of a vertex ball's sphere on one small circle: a
 // mirror of the input, or the rotation about a sharp edge (which acts on the
-// edge's two facets as a mirror does), maps the sector [0, span] of a facet
-// onto the sector of another and the arc angle t to span - t (a mirror
-// reverses the facets' loops: t = 0 of one is t = span of the other). Two
-// mirror pairs of points are coplanar (their chords are parallel), so the
-// ball points of two such sectors' far edges and the two arcs' midpoints lie
-// on a circle, and rounding makes their tet flat (20 mm cube, example012,
-// extrusion, fandisk, wedge-1, thin_wedge, spike, edge_facet: smallest
-// dihedral angles of 1e-13 to 1e-15 degrees).
-// So SOS splits the arc [ta, tb] at ta + phi (tb - ta), phi = 1/2 + delta,
-// measured from the sector's t = 0 edge. Every split point's angle, as a
-// function of phi, increases with slope at least the length of the arc it
-// splits (induction: (1 - phi) ta + phi tb with ta, tb increasing), so where
-// the paper's point has a mirror partner, ours misses the partner's mirror
-// image by at least 2 delta times that arc: there are no mirror pairs, and
-// four points of one sphere are not coplanar by far more than rounding. Four
-// non-coplanar points of the sphere have it as circumsphere, which holds u:
-// they make no tet of Del V at all.
+// edge's two facets as a mirror does), maps the sector of a facet onto the
+// sector of another and reverses its turn (a mirror reverses the facets'
+// loops: the e1 end of one is the eb end of the other). Two mirror pairs of
+// points are coplanar (their chords are parallel), so the ball points of two
+// such sectors' far edges and the two arcs' midpoints lie on a circle, and
+// rounding makes their tet flat (20 mm cube, example012, extrusion, fandisk,
+// wedge-1, thin_wedge, spike, edge_facet: smallest dihedral angles of 1e-13
+// to 1e-15 degrees).
+// So SOS splits the arc from direction a counter-clockwise to b (a on the
+// e1 side) at the direction unit(m + delta (b - a)), m the arc's middle. For
+// an arc of angle theta, |a + b| = 2 cos(theta/2) and |b - a| = 2 sin(theta/2),
+// and m = unit(a + b) = unit(cross(b - a, n)) in exact arithmetic; each is
+// taken where it is well conditioned (a + b for arcs below 2 pi/3). b - a is
+// the tangent at m toward b, so the point lies on the arc, turned from the
+// middle toward b by omega = atan(2 delta sin(theta/2)): at delta = 0 it is
+// the paper's point, the midpoint of the chord ab pushed onto the sphere.
+// For theta up to pi (every arc after INITIALIZE), omega / theta lies between
+// 0.636 delta ((2/pi) delta, less 2e-5 of it: atan x >= x - x^3/3) and
+// delta. Measured as an angle from e1 (for the argument only; the code has
+// no angles), the point is
+// (ta + tb)/2 + omega; as a function of delta it increases (induction: its
+// ends do or stay put, and d omega / d theta lies in [0, delta], below 1/2)
+// at least at the rate d omega / d delta = 2 sin(theta/2) / (1 + 4 delta^2
+// sin^2(theta/2)). So where the paper's point has a mirror partner, ours
+// misses the partner's mirror image by at least 2 omega: there are no mirror
+// pairs, and four points of one sphere are not coplanar by far more than
+// rounding. Four non-coplanar points of the sphere have it as circumsphere,
+// which holds u: they make no tet of Del V at all.
 // delta is small where the sphere's points of two facets lie close: at a
 // sharp edge of dihedral angle a, a point of one facet off the mirror image
 // of a point of the other by d lies inside the diametric balls of the other
 // facet's subfacets unless d is below about a^2 times the arc, and each such
 // encroachment splits another arc (wedge-1, a = 1 degree: 6 732 tets at
-// delta = 3e-5, 24 211 at 3e-3, 63 537 at 1e-2). So delta = min(pi/1000, a^2/64), a the
-// smallest input angle at u (edge-edge, edge-facet, dihedral) in radians.
+// delta = 3e-5, 24 211 at 3e-3, 63 537 at 1e-2, with the split at the angle
+// fraction 1/2 + delta). So delta = min(pi/1000, a^2/64), a the smallest
+// input angle at u (edge-edge, edge-facet, dihedral) in radians.
 // Why the paper's lemmas still hold: the point still lies on the arc of the
 // boundary of u's ball in F between a and b, so the ball stays empty, the new
 // shield subsegments are chords of the arc, and the shield subfacets'
 // diametric balls still lie in the ball and the shield subsegments'
-// diametric balls (4.1). Each new arc is at least 1 - phi >= 0.4968 of the
-// old one instead of 1/2, so the distance from the split point to the arc's
-// ends, and the bounds on neighbour radii the termination proofs draw from
-// it (Lemma 5.1, from [8]), change by a factor of at least 0.993; the packing
-// argument is unchanged. INITIALIZE splits a sector of angle pi or more until
-// every arc is below pi (initial_splits: twice above pi/phi, a span within
-// 0.013 pi of 2 pi, where the middle needed one split); those points, like
-// the paper's, have no predecessor (5.1) and lie Omega(r) apart.
+// diametric balls (4.1). Each new arc is at least 1/2 - delta >= 0.4968 of
+// the old one instead of 1/2, so the distance from the split point to the
+// arc's ends, and the bounds on neighbour radii the termination proofs draw
+// from it (Lemma 5.1, from [8]), change by a factor of at least 0.993; the
+// packing argument is unchanged. INITIALIZE splits a sector of angle pi or
+// more until every arc is below pi (initial_splits: twice when the span is
+// within 2 omega <= 4 delta <= 0.004 pi of 2 pi, where the middle needed one
+// split); those points, like the paper's, have no predecessor (5.1) and lie
+// Omega(r) apart.
+Point3 Sector::sos_direction(const Point3& da, const Point3& db) const {
+  const Point3 chord = sub(db, da);
+  const bool narrow = below_pi(da, db) && dot(da, db) >= -0.5;  // theta below 2 pi/3
+  const Point3 m = unit(narrow ? add(da, db) : cross(chord, n));
+  return unit(add(m, mul(chord, delta)));
+}
+
 int Sector::initial_splits() const {
-  int n = 0;
-  // sos_angle(0, t) ends the larger piece [0, phi t], the one split next.
-  for (double t = span; t >= kPi; t = sos_angle(0, t)) ++n;
-  return n;
+  // The arc from e1 to the last split point is the larger piece, the one
+  // split next; two splits leave every arc below pi (see above).
+  int splits = 0;
+  for (Point3 b = eb; splits < 2 && !below_pi(e1, b); b = sos_direction(e1, b)) ++splits;
+  return splits;
 }
 
 // ---- P = the input PLC with the bounding box B ----------------------------------
@@ -138,21 +164,20 @@ Domain::Domain(const PLC& plc, const Analysis& analysis) : p(plc) {
 }
 
 Sector Domain::sector(int u, int f, int prev, int next) const {
-  const Point3 n = frames[f].n;
   Sector s;
   s.u = u;
   s.facet = f;
   s.center = p.vertices[u];
+  s.n = frames[f].n;
   s.r = ball_radius[u];
-  s.phi = 0.5 + sos_asymmetry[u];
-  Point3 d1 = sub(p.vertices[next], s.center);
-  d1 = sub(d1, mul(n, dot(d1, n)));
-  s.e1 = mul(d1, 1 / std::sqrt(dot(d1, d1)));
-  s.e2 = cross(n, s.e1);
-  const Point3 d2 = sub(p.vertices[prev], s.center);
-  double span = std::atan2(dot(d2, s.e2), dot(d2, s.e1));
-  if (span <= 0) span += 2 * kPi;
-  s.span = span;
+  s.delta = sos_asymmetry[u];
+  // The directions of the edges to next and prev in the facet's plane.
+  const auto in_plane = [&](int w) {
+    const Point3 d = sub(p.vertices[w], s.center);
+    return unit(sub(d, mul(s.n, dot(d, s.n))));
+  };
+  s.e1 = in_plane(next);
+  s.eb = in_plane(prev);
   return s;
 }
 

@@ -17,21 +17,34 @@
 namespace wqmesh::mesher {
 
 // ---- Shield sectors (section 4.1) ----------------------------------------------
-/// The sector of facet `facet` at sharp vertex u inside the vertex ball:
-/// points u + r (cos t e1 + sin t e2), t in [0, span], t = 0 on the first
-/// edge of the sector, t = span on the second.
+/// The sector of facet `facet` at sharp vertex u inside the vertex ball: the
+/// points u + r d, d a unit vector of the facet's plane (normal n) that turns
+/// counter-clockwise about n from e1 (on the sector's first edge) to eb (on
+/// its second). A point of its arc is named by its direction d, never by an
+/// angle: every decision on arcs is made with +, -, *, / and sqrt, which round
+/// alike on every platform (std::cos, std::sin and std::atan2 do not: glibc
+/// and the wasm libc differ in the last bit, and the meshes did).
 struct Sector {
   int u = -1, facet = -1;
-  Point3 center, e1, e2;
-  double r = 0, span = 0;
-  /// The fraction of an arc at which SOS splits it, from its ta end: 1/2 +
-  /// Domain::sos_asymmetry[u] (the paper takes 1/2; see domain.cpp).
-  double phi = 0.5;
-  Point3 at(double t) const;
-  /// Where SOS splits the arc [ta, tb] of this sector (section 4.1).
-  double sos_angle(double ta, double tb) const { return ta + phi * (tb - ta); }
+  Point3 center, n, e1, eb;
+  double r = 0;
+  /// How far off the middle SOS splits an arc: Domain::sos_asymmetry[u] (the
+  /// paper splits at the middle, delta = 0; see domain.cpp).
+  double delta = 0;
+  /// The point of the sphere in direction d (unit).
+  Point3 at(const Point3& d) const { return geometry::add(center, geometry::mul(d, r)); }
+  /// Whether the arc from da counter-clockwise to db (unit directions of the
+  /// plane) is below pi: cross(da, db) along n. An arc of pi exactly is not.
+  bool below_pi(const Point3& da, const Point3& db) const { return geometry::dot(geometry::cross(da, db), n) > 0; }
+  /// Whether direction d (any length; its part along n is ignored) lies on
+  /// the arc from da counter-clockwise to db, ends included.
+  bool holds(const Point3& da, const Point3& db, const Point3& d) const;
+  /// The unit direction at which SOS splits the arc from da counter-clockwise
+  /// to db (section 4.1; see domain.cpp): the arc's middle turned toward db.
+  Point3 sos_direction(const Point3& da, const Point3& db) const;
   /// How many SOS splits INITIALIZE makes in this sector so that every arc
-  /// is below pi (section 4.1): 0 below pi, 1 up to pi/phi, else 2.
+  /// is below pi (section 4.1): it splits the arc from e1 to eb, then the
+  /// piece from e1 (the larger) while it is not below pi; 0, 1 or 2.
   int initial_splits() const;
 };
 
@@ -45,9 +58,9 @@ struct Domain : PlcIndex {
   int input_vertices = 0, input_edges = 0, input_facets = 0;
   std::vector<char> sharp_vertex, sharp_edge;
   std::vector<double> ball_radius;  ///< f(u)/4 at sharp vertices, else 0
-  /// Per vertex: how far off the middle SOS splits the arcs of its ball,
-  /// min(kSosAsymmetry, a^2/64), a the smallest input angle at the vertex in
-  /// radians (beyond the paper; see domain.cpp).
+  /// Per vertex: how far off the middle SOS splits the arcs of its ball
+  /// (Sector::delta), min(kSosAsymmetry, a^2/64), a the smallest input angle
+  /// at the vertex in radians (beyond the paper; see domain.cpp).
   std::vector<double> sos_asymmetry;
   static constexpr double kSosAsymmetry = geometry::kPi / 1000;
   Box box;  ///< B

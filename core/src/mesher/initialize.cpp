@@ -69,9 +69,9 @@ void Initialize::run() {
   // Shield subsegments: one per sector of a facet at a sharp vertex, between
   // the ball points on the sector's two edges; a sector of angle pi or more is
   // split by SOS (section 4.1) until every arc is below pi. SOS splits a
-  // little off the middle (Sector::sos_angle, beyond the paper: see
-  // domain.cpp), so the larger arc [ta, t] needs a second split when the
-  // sector is within 0.013 pi of 2 pi.
+  // little off the middle, toward the arc's db end (Sector::sos_direction,
+  // beyond the paper: see domain.cpp), so the larger arc, from da to the new
+  // point, needs a second split when the sector is within 0.004 pi of 2 pi.
   for (int u = 0; u < static_cast<int>(P.vertices.size()); ++u) {
     if (dom_.ball_radius[u] <= 0) continue;
     dom_.for_each_corner(u, [&](int f, int prev, int next) {
@@ -83,13 +83,13 @@ void Initialize::run() {
       shield.a = ball_point.at({u, edge_between(u, next)});
       shield.b = ball_point.at({u, edge_between(u, prev)});
       shield.sector = sid;
-      shield.ta = 0;
-      shield.tb = s.span;
+      shield.da = s.e1;
+      shield.db = s.eb;
       queues_.push_segment(sub_.add_segment(shield));
       for (int k = s.initial_splits(); k > 0; --k) {
         const int id = ins_.insert(sub_.splite(shield), Rule::initialize);
         if (id < 0) throw std::runtime_error("INITIALIZE: an SOS point could not be inserted");
-        shield = sub_.subsegment(edge_key(shield.a, id));  // the arc [ta, t], the larger piece
+        shield = sub_.subsegment(edge_key(shield.a, id));  // from da to the new point, the larger piece
       }
     });
   }

@@ -128,7 +128,6 @@ int Inserter::insert(const Insertion& ins) {
   m.on = ins.on;
   m.element = ins.element;
   m.sector = ins.sector;
-  m.angle = ins.angle;
   m.ball = ins.ball;
   verts_.push_back(m);
   std::vector<std::uint64_t> halves;

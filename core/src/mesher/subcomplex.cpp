@@ -166,7 +166,7 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
       Subsegment left = old, right = old;
       left.b = id;
       right.a = id;
-      left.tb = right.ta = ins.angle;
+      left.db = right.da = ins.dir;
       left.cell = right.cell = nullptr;  // found on their first test
       left.tested_at = right.tested_at = 0;
       new_segments.push_back(add_segment(left));
@@ -326,8 +326,8 @@ Insertion Subcomplex::splite(const Subsegment& e) const {
     // leaves no four points of the sphere on a small circle where the input
     // is symmetric; see Sector in domain.cpp, and why the lemmas still hold).
     const Sector& s = sectors_[e.sector];
-    ins.angle = s.sos_angle(e.ta, e.tb);
-    ins.p = s.at(ins.angle);
+    ins.dir = s.sos_direction(e.da, e.db);
+    ins.p = s.at(ins.dir);
     ins.on = On::facet;
     ins.element = s.facet;
     ins.sector = e.sector;
@@ -377,12 +377,10 @@ Insertion Subcomplex::splitf(const Subfacet& h) const {
           const Sector& s = sectors_[sid];
           if (s.facet != h.facet) continue;
           const Point3 d = sub(c, s.center);
-          double t = std::atan2(dot(d, s.e2), dot(d, s.e1));
-          if (t < 0) t += 2 * kPi;
-          if (t > s.span) continue;
+          if (!s.holds(s.e1, s.eb, d)) continue;
           for (const std::uint64_t k : shield_keys(sid)) {
             const Subsegment& g = segs_.at(k);
-            if (g.ta <= t && t <= g.tb) pick = &g;
+            if (s.holds(g.da, g.db, d)) pick = &g;
           }
         }
       Insertion none;

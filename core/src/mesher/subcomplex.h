@@ -66,18 +66,18 @@ struct MVertex {
   On on = On::free;
   int element = -1;  ///< P vertex, edge or facet index
   int sector = -1;   ///< on a vertex-ball arc (shield subsegment endpoint)
-  double angle = 0;  ///< its angle on that arc
   int ball = -1;     ///< the sharp vertex u when the vertex lies on the sphere of û
 };
 
 // ---- Subsegments ---------------------------------------------------------------
 /// A subsegment ab of a P edge, or a shield subsegment (a chord of a sector's
-/// arc, sector >= 0, with the arc angles ta of a and tb of b).
+/// arc, sector >= 0, from a counter-clockwise to b, with the unit directions
+/// da of a and db of b from the sector's center: Sector).
 struct Subsegment {
   int a = -1, b = -1;
   int edge = -1;
   int sector = -1;
-  double ta = 0, tb = 0;
+  Point3 da{{0, 0, 0}}, db{{0, 0, 0}};
   bool in_ball = false;  ///< inside a vertex ball: protected, never split
   bool sharp = false;    ///< on a sharp edge, outside the vertex balls
   /// A cell that held ab when its encroachment was last tested (a hint for
@@ -109,7 +109,7 @@ struct Insertion {
   std::uint64_t split_segment = 0;  ///< the subsegment it splits (if has_segment)
   bool has_segment = false;
   int sector = -1;
-  double angle = 0;
+  Point3 dir{{0, 0, 0}};  ///< on a sector's arc: its unit direction from the center
   int ball = -1;
   int hint = -1;
   bool none = false;  ///< nothing to insert (see SPLITF in a vertex ball)
