@@ -54,7 +54,13 @@ struct NoHiddenPoints {
 using RCb3 = CGAL::Regular_triangulation_cell_base_3<K, CGAL::Triangulation_cell_base_3<K>, CGAL::Discard_hidden_points,
                                                      NoHiddenPoints>;
 // The label byte of the scans (triangulation.h), in the cell's padding.
-using Cb3 = CGAL::Triangulation_cell_base_with_info_3<char, K, RCb3>;
+// Beyond CGAL's info (issue 15): every cell is made kUnlabelled (CGAL leaves
+// a char info uninitialised), so that complete_labels knows the cells made
+// since the labels were set, by an insertion or a weight change alike.
+struct CellLabel {
+  char value = RegularTriangulation::kUnlabelled;
+};
+using Cb3 = CGAL::Triangulation_cell_base_with_info_3<CellLabel, K, RCb3>;
 using Tds3 = CGAL::Triangulation_data_structure_3<Vb3, Cb3>;
 using RtBase = CGAL::Regular_triangulation_3<K, Tds3>;
 // CGAL's regular triangulation with one more way in (beyond the paper, issue
@@ -103,6 +109,47 @@ struct RegularTriangulation::Impl {
 
   Tet tet_of(Rt::Cell_handle c) const {
     return {{id_of(c->vertex(0)), id_of(c->vertex(1)), id_of(c->vertex(2)), id_of(c->vertex(3))}};
+  }
+
+  // The label scans' steps (flood_labels, complete_labels): for each facet
+  // k in the bit mask `need`, flip[k] = 1 when the facet of c opposite its
+  // vertex k is a wall (finite, its three vertices on_walls, and wall()
+  // holds), else 0. Each vertex of c is read once and wall(), a search of
+  // the walls, asked only where all three vertices may be on one (issue
+  // 15: most cells have at most two vertices on P).
+  void wall_flips(Rt::Cell_handle c, int need, const std::function<bool(int)>& on_walls,
+                  const std::function<bool(int, int, int)>& wall, std::array<char, 4>& flip) const {
+    std::array<int, 4> id;
+    std::array<char, 4> on;
+    int count = 0;
+    for (int i = 0; i < 4; ++i) {
+      id[i] = id_of(c->vertex(i));
+      on[i] = id[i] != kInfinite && on_walls(id[i]);
+      count += on[i];
+    }
+    for (int k = 0; k < 4; ++k)
+      flip[k] = (need >> k & 1) && count - on[k] == 3 && wall(id[(k + 1) % 4], id[(k + 2) % 4], id[(k + 3) % 4]);
+  }
+  void set_label(Rt::Cell_handle c, char parity, const std::function<bool(const Tet&)>& excluded) const {
+    c->info().value = parity && excluded && excluded(tet_of(c)) ? RegularTriangulation::kExcludedOdd : parity;
+  }
+  // The fill's step from the labelled cell c: each unlabelled neighbour
+  // takes c's parity, flipped across a wall, and is pushed onto `stack`.
+  void pass_labels_on(Rt::Cell_handle c, const std::function<bool(int)>& on_walls,
+                      const std::function<bool(int, int, int)>& wall, const std::function<bool(const Tet&)>& excluded,
+                      std::vector<Rt::Cell_handle>& stack) const {
+    int need = 0;
+    for (int k = 0; k < 4; ++k) need |= (c->neighbor(k)->info().value == RegularTriangulation::kUnlabelled) << k;
+    if (!need) return;
+    std::array<char, 4> flip;
+    wall_flips(c, need, on_walls, wall, flip);
+    const char from = c->info().value & 1;
+    for (int k = 0; k < 4; ++k) {
+      if (!(need >> k & 1)) continue;
+      const Rt::Cell_handle x = c->neighbor(k);
+      set_label(x, from ^ flip[k], excluded);
+      stack.push_back(x);
+    }
   }
 
   Rt::Cell_handle start_cell(int hint) const {
@@ -679,49 +726,115 @@ RegularTriangulation::CellGraph RegularTriangulation::cell_graph(const std::func
   return g;
 }
 
-bool RegularTriangulation::flood_labels(const std::function<bool(int, int, int)>& wall,
+namespace {
+
+/// The parity of a label (triangulation.h): 1 for 1 and kExcludedOdd.
+inline char parity(char label) { return static_cast<char>(label & 1); }
+
+}  // namespace
+
+bool RegularTriangulation::flood_labels(const std::function<bool(int)>& on_walls,
+                                        const std::function<bool(int, int, int)>& wall,
+                                        const std::function<bool(const Tet&)>& excluded,
                                         const std::function<bool(std::size_t)>& poll, std::size_t* wall_faces) const {
   constexpr std::size_t kEvery = 1024;
   std::size_t n = 0;
   auto stop = [&] { return poll && ++n % kEvery == 0 && !poll(kEvery); };
   const Rt& rt = impl_->rt;
   std::vector<Rt::Cell_handle> stack;
+  std::array<char, 4> flip;
   for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
     if (stop()) return false;
-    c->info() = 2;  // unknown
+    c->info().value = kUnlabelled;
   }
   if (rt.dimension() < 3) return true;
   rt.incident_cells(rt.infinite_vertex(), std::back_inserter(stack));
-  for (const Rt::Cell_handle& c : stack) c->info() = 0;
+  for (const Rt::Cell_handle& c : stack) c->info().value = 0;
   // Each cell is pushed once (labelled when pushed): at most |cells| pops.
   while (!stack.empty()) {
     if (stop()) return false;
     const Rt::Cell_handle c = stack.back();
     stack.pop_back();
-    for (int k = 0; k < 4; ++k) {
-      const Rt::Cell_handle x = c->neighbor(k);
-      if (x->info() != 2) continue;
-      const int a = impl_->id_of(c->vertex((k + 1) % 4)), b = impl_->id_of(c->vertex((k + 2) % 4)),
-                d = impl_->id_of(c->vertex((k + 3) % 4));
-      const bool flip = a != kInfinite && b != kInfinite && d != kInfinite && wall(a, b, d);
-      x->info() = flip ? char(1 - c->info()) : c->info();
-      stack.push_back(x);
-    }
+    impl_->pass_labels_on(c, on_walls, wall, excluded, stack);
   }
   if (wall_faces) {
     // Each facet once: from the cell of the lower address.
     *wall_faces = 0;
     for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
       if (stop()) return false;
-      for (int k = 0; k < 4; ++k) {
-        if (&*c->neighbor(k) < &*c) continue;
-        const int a = impl_->id_of(c->vertex((k + 1) % 4)), b = impl_->id_of(c->vertex((k + 2) % 4)),
-                  d = impl_->id_of(c->vertex((k + 3) % 4));
-        *wall_faces += a != kInfinite && b != kInfinite && d != kInfinite && wall(a, b, d);
-      }
+      int need = 0;
+      for (int k = 0; k < 4; ++k) need |= !(&*c->neighbor(k) < &*c) << k;
+      impl_->wall_flips(c, need, on_walls, wall, flip);
+      for (int k = 0; k < 4; ++k) *wall_faces += flip[k];
     }
   }
   return true;
+}
+
+bool RegularTriangulation::complete_labels(const std::function<bool(int)>& on_walls,
+                                           const std::function<bool(int, int, int)>& wall, std::size_t walls,
+                                           const std::function<bool(const Tet&)>& excluded,
+                                           const std::function<bool(std::size_t)>& poll) const {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  auto stop = [&] { return poll && ++n % kEvery == 0 && !poll(kEvery); };
+  const Rt& rt = impl_->rt;
+  if (rt.dimension() < 3) return walls == 0;
+  // The unlabelled cells (made since the labels were set) take the label of
+  // a labelled neighbour, an infinite one 0, and pass theirs on to the
+  // unlabelled cells around them: each cell is pushed once.
+  std::vector<Rt::Cell_handle> stack;
+  std::array<char, 4> flip;
+  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+    if (stop()) return false;
+    if (c->info().value != kUnlabelled) continue;
+    if (rt.is_infinite(c)) {
+      c->info().value = 0;
+      stack.push_back(c);
+      continue;
+    }
+    for (int k = 0; k < 4; ++k) {
+      const char across = c->neighbor(k)->info().value;
+      if (across == kUnlabelled) continue;
+      impl_->wall_flips(c, 1 << k, on_walls, wall, flip);
+      impl_->set_label(c, parity(across) ^ flip[k], excluded);
+      stack.push_back(c);
+      break;
+    }
+  }
+  while (!stack.empty()) {
+    if (stop()) return false;
+    const Rt::Cell_handle c = stack.back();
+    stack.pop_back();
+    impl_->pass_labels_on(c, on_walls, wall, excluded, stack);
+  }
+  // The check: every infinite cell even, and the facets across which the
+  // parities differ (each facet once, from the cell of the lower address)
+  // are `walls` in number and each a wall. There are at most `walls` wall
+  // facets (a triangle is one facet at most), so they are then exactly the
+  // wall facets, and every wall is one: the parities differ exactly at the
+  // walls. Such labels are the only ones (every cell is joined to an
+  // infinite one by a path of facets), so they are any flood fill's. Only
+  // the facets of differing parities are asked whether they are walls (the
+  // cells' vertices are not read for the others).
+  std::size_t differ = 0;
+  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+    if (stop()) return false;
+    const char label = c->info().value;
+    if (label == kUnlabelled || (parity(label) && rt.is_infinite(c))) return false;
+    int need = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Rt::Cell_handle x = c->neighbor(k);
+      need |= (!(&*x < &*c) && parity(label) != parity(x->info().value)) << k;
+    }
+    if (!need) continue;
+    impl_->wall_flips(c, need, on_walls, wall, flip);
+    for (int k = 0; k < 4; ++k) {
+      if (!(need >> k & 1)) continue;
+      if (!flip[k] || ++differ > walls) return false;
+    }
+  }
+  return differ == walls;
 }
 
 bool RegularTriangulation::visit_labels(const std::function<void(const Tet&, char&)>& visit,
@@ -730,7 +843,7 @@ bool RegularTriangulation::visit_labels(const std::function<void(const Tet&, cha
   std::size_t n = 0;
   for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
     if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
-    visit(impl_->tet_of(c), c->info());
+    visit(impl_->tet_of(c), c->info().value);
   }
   return true;
 }
@@ -742,9 +855,9 @@ bool RegularTriangulation::visit_labelled(char label,
   std::size_t n = 0;
   for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
     if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
-    if (c->info() != label) continue;
-    const std::array<char, 4> across{
-        {c->neighbor(0)->info(), c->neighbor(1)->info(), c->neighbor(2)->info(), c->neighbor(3)->info()}};
+    if (c->info().value != label) continue;
+    const std::array<char, 4> across{{c->neighbor(0)->info().value, c->neighbor(1)->info().value,
+                                      c->neighbor(2)->info().value, c->neighbor(3)->info().value}};
     visit(impl_->tet_of(c), across);
   }
   return true;

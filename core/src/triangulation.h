@@ -159,18 +159,49 @@ class RegularTriangulation {
   // needs no cell graph and no table keyed by cells beside the triangulation
   // (at the run's peak those were 35-110 bytes per output tet). Like the
   // walks' marks it is scratch, no part of the triangulation: the calls are
-  // const, and a cell made by a later change holds any value.
+  // const, and a cell made by a later change is kUnlabelled.
   // `poll` as cell_graph's; each call returns false when it stopped (the
   // labels are then unusable).
+  /// The label byte's values beside the fill's 0 and 1: kUnlabelled, the
+  /// value of every cell when it is made (by an insertion or a weight
+  /// change) and of a cell a fill has not reached; kExcludedOdd, a cell of
+  /// label 1 that the caller's `excluded` takes out (flat tets lying in an
+  /// input facet: extract.cpp). The parity of a label is its lowest bit.
+  static constexpr char kUnlabelled = 2, kExcludedOdd = 3;
   /// Labels every cell, finite or not, by a flood fill: the infinite cells
   /// 0; a cell reached across the facet abc of a labelled cell takes its
-  /// label, flipped (1 - label) when wall(a, b, c) holds (a, b, c finite).
+  /// parity, flipped when abc is a wall: a, b, c finite, on_walls holds for
+  /// each (a filter: a vertex on no wall; wall() is asked only where it
+  /// holds for all three) and wall(a, b, c) holds; as 0 or 1,
+  /// or kExcludedOdd for an odd cell t when excluded(t) holds.
   /// The labels depend on the order of the fill unless every closed path of
   /// cells crosses an even number of walls (extract.cpp, even_walls).
   /// `wall_faces`, when given, gets the number of facets of the
-  /// triangulation for which wall() holds (each facet once).
-  bool flood_labels(const std::function<bool(int a, int b, int c)>& wall,
-                    const std::function<bool(std::size_t)>& poll = {}, std::size_t* wall_faces = nullptr) const;
+  /// triangulation that are walls (each facet once).
+  bool flood_labels(const std::function<bool(int v)>& on_walls, const std::function<bool(int a, int b, int c)>& wall,
+                    const std::function<bool(const Tet&)>& excluded, const std::function<bool(std::size_t)>& poll = {},
+                    std::size_t* wall_faces = nullptr) const;
+  /// Beyond the paper (issue 15: rule 7's passes, the sliver count and the
+  /// extraction each filled the whole triangulation): completes the labels
+  /// a fill (or an earlier completion) left. Every kUnlabelled cell (made
+  /// since) takes its label across a facet from a labelled neighbour as
+  /// flood_labels would (an infinite one 0), then the labels are checked.
+  /// `walls`: the number of distinct triangles for which wall() holds.
+  /// Returns true when every infinite cell is even, every one of the walls
+  /// is a facet and the parities across each facet differ exactly where it
+  /// is a wall: such labels are the only ones (each cell is joined to an
+  /// infinite one by facets), so they are flood_labels' whenever those are
+  /// free of the order, and flood_labels would count `walls` wall facets.
+  /// Returns false otherwise (a wall that is no facet, a wall made or lost
+  /// between old cells, labels left by a fill that was not free of the
+  /// order or was stopped: take flood_labels) or when `poll` stopped it;
+  /// the labels are then unusable. One pass over the cells reading their
+  /// labels, one over their neighbours' labels, and wall() asked only for
+  /// the new cells' facets and those of differing parities: flood_labels
+  /// fills every cell and asks wall() of every facet.
+  bool complete_labels(const std::function<bool(int v)>& on_walls, const std::function<bool(int a, int b, int c)>& wall,
+                       std::size_t walls, const std::function<bool(const Tet&)>& excluded,
+                       const std::function<bool(std::size_t)>& poll = {}) const;
   /// Visits every cell, finite or not, in cell_graph's order, with its label,
   /// which `visit` may change.
   bool visit_labels(const std::function<void(const Tet& t, char& label)>& visit,

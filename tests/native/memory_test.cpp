@@ -227,7 +227,7 @@ TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
       std::vector<char> labels;
       tri.visit_labels([&](const Tet& t, char& label) {
         cells.push_back(t);
-        labels.push_back(label);
+        labels.push_back(label == RegularTriangulation::kExcludedOdd ? char(0) : label);
       });
       ASSERT_EQ(cells, g.cells);
       ASSERT_EQ(labels, expected);
@@ -236,7 +236,8 @@ TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
         while (c < g.cells.size() && expected[c] != 1) ++c;
         ASSERT_LT(c, g.cells.size());
         EXPECT_EQ(t, g.cells[c]);
-        for (int k = 0; k < 4; ++k) EXPECT_EQ(across[k], expected[g.neighbor[c][k]]) << "cell " << c << " face " << k;
+        for (int k = 0; k < 4; ++k)
+          EXPECT_EQ(across[k] == 1, expected[g.neighbor[c][k]] == 1) << "cell " << c << " face " << k;
         ++c;
         ++inside;
       });
@@ -262,6 +263,86 @@ TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
     }
   }
   EXPECT_GT(in_place, 0);
+}
+
+// The labels completed after insertions and weight changes
+// (RegularTriangulation::complete_labels: only the cells made since are
+// labelled, from their neighbours) are a fresh fill's: checked after the
+// insertions of REFINE (every one once rule 7 has started, every 16th
+// before) and after PUMP's weight changes. Wherever the fresh fill is free
+// of the order, every wall is a facet and the labels before were such a
+// fill's, the completion must hold (a wrong rule for the new cells fails
+// its check) and give the fill's labels, kExcludedOdd read as 0.
+TEST(Memory, CompletedLabelsAreAFreshFillsAfterInsertionsAndWeightChanges) {
+  std::vector<std::string> files;
+  for (const char* name : {"spike.off", "edge_facet.off", "thin_wedge.off", "bracket.off"})
+    files.push_back(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
+  const std::string shared = WQMESH_SHARED_MODELS;
+  if (!shared.empty())
+    for (const char* name : {"example012.stl", "20mm-xyz-cube.stl"}) files.push_back(shared + "/" + name);
+  std::size_t checked = 0, completed = 0, after_rule7 = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    const Input in = load(file);
+    const mesher::Domain dom(in.plc, in.analysis);
+    const MeshOptions o;
+    const ProgressCallback none;
+    mesher::Mesher m(dom, o, none);
+    const RegularTriangulation& tri = m.triangulation();
+    const mesher::Subcomplex& sub = m.subcomplex();
+    bool valid_before = false;  // the cells hold the labels of a fill free of the order
+    const auto check = [&](bool rule7) {
+      std::vector<mesher::Tri> walls;
+      for (const mesher::Subfacet& h : sub.subfacets())
+        if (!dom.is_box_facet(h.facet)) walls.push_back(mesher::sorted(h.v));
+      std::sort(walls.begin(), walls.end());
+      walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
+      const auto wall = [&](int a, int b, int c) {
+        return std::binary_search(walls.begin(), walls.end(), mesher::sorted({{a, b, c}}));
+      };
+      const auto flat = [&](const Tet& t) { return sub.flat_on_facet(t); };
+      const RegularTriangulation::CellGraph g = tri.cell_graph();
+      bool order_free = false;
+      const std::vector<char> fresh = mesher::interior_labels(dom, sub, g, m.meter(), false, &order_free);
+      const bool valid = order_free && sub.conforms();
+      const auto on_p = [&](int v) { return sub.on_p(v); };
+      const bool ok = tri.complete_labels(on_p, wall, walls.size(), flat);
+      if (valid && valid_before) {
+        ++checked;
+        after_rule7 += rule7;
+        EXPECT_TRUE(ok) << "after " << m.vertices().size() << " vertices";
+        if (ok) {
+          ++completed;
+          std::vector<char> labels;
+          tri.visit_labels([&](const Tet&, char& label) {
+            labels.push_back(label == RegularTriangulation::kExcludedOdd ? char(0) : label);
+          });
+          EXPECT_EQ(labels, fresh) << "after " << m.vertices().size() << " vertices";
+        }
+      }
+      if (!ok) tri.flood_labels(on_p, wall, flat);  // a fill to complete later
+      valid_before = valid;
+    };
+    m.initialize();
+    m.conform();
+    bool rule7 = false;
+    std::size_t insertions = 0;
+    m.inserter().observer = [&](const mesher::Insertion&, int rule, int id) {
+      if (id < 0) return;
+      rule7 = rule7 || rule == 7;
+      if (rule7 || ++insertions % 16 == 0) check(rule7);
+    };
+    m.refine();
+    m.inserter().observer = nullptr;
+    check(rule7);
+    m.freeze_subcomplex();
+    m.count_qmesh_slivers();
+    m.pump();
+    check(false);
+  }
+  EXPECT_GT(checked, 0u);
+  EXPECT_EQ(completed, checked);
+  if (!shared.empty()) EXPECT_GT(after_rule7, 0u);
 }
 
 // mesh_polyhedron frees V's triangulation and the subcomplex before the

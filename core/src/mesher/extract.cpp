@@ -96,24 +96,30 @@ bool label_cells_in_place(const Domain& dom, const Subcomplex& sub, const Regula
   // A sorted list, not a hash set: the same answers in a third of the memory.
   std::sort(walls.begin(), walls.end());
   walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
+  // A triangle with a vertex off P (free) is in no facet's triangulation:
+  // no wall, without a look-up.
+  const auto on_p = [&](int v) { return sub.on_p(v); };
   const auto is_wall = [&](int a, int b, int c) {
-    return sub.on_p(a) && sub.on_p(b) && sub.on_p(c) &&
-           std::binary_search(walls.begin(), walls.end(), sorted({{a, b, c}}));
+    return std::binary_search(walls.begin(), walls.end(), sorted({{a, b, c}}));
   };
+  // As interior_labels: flat tets lying in an input facet are left out
+  // (kExcludedOdd instead of 1; a cell's flatness never changes).
+  const auto flat = [&](const Tet& t) { return sub.flat_on_facet(t); };
   std::function<bool(std::size_t)> poll;
   if (scan) poll = [&](std::size_t n) { return meter.poll(n, false); };
-  // The fill crosses only the walls that are facets of the triangulation:
-  // the labels are free of the order when those are all of them (a run that
-  // conforms; the rule 7 passes of REFINE need not) and even_walls holds.
+  // Beyond the paper (issue 15): the labels an earlier call left in the
+  // cells are completed and checked (complete_labels: only the cells made
+  // since are labelled, every facet is checked), and the whole
+  // triangulation is filled again only when the check fails; the same
+  // labels and answer either way. The fill crosses only the walls that are facets of
+  // the triangulation: the labels are free of the order when those are all
+  // of them (a run that conforms; the rule 7 passes of REFINE need not) and
+  // even_walls holds.
+  if (tri.complete_labels(on_p, is_wall, walls.size(), flat, poll)) return true;
+  if (scan && meter.stopped()) return false;
   std::size_t faces = 0;
-  if (!tri.flood_labels(is_wall, poll, &faces)) return false;
-  if (faces != walls.size()) return false;
-  // As interior_labels: flat tets lying in an input facet are left out.
-  return tri.visit_labels(
-      [&](const Tet& t, char& label) {
-        if (label == 1 && sub.flat_on_facet(t)) label = 0;
-      },
-      poll);
+  if (!tri.flood_labels(on_p, is_wall, flat, poll, &faces)) return false;
+  return faces == walls.size();
 }
 
 namespace {

@@ -24,10 +24,16 @@ std::vector<char> interior_labels(const Domain& dom, const Subcomplex& sub, cons
 
 /// Beyond the paper (issue 15, the peak memory): interior_labels without a
 /// cell graph, kept in the label bytes of the cells of V's triangulation
-/// (RegularTriangulation::flood_labels): 1 inside, 0 outside (flat tets
-/// lying in an input facet included), exactly interior_labels' labels, when
-/// those are the same for every order of the cells (extract.cpp,
-/// even_walls, and every wall a facet of the triangulation). Returns false
+/// (RegularTriangulation::flood_labels): 1 inside, 0 outside, and
+/// RegularTriangulation::kExcludedOdd for the flat tets lying in an input
+/// facet that interior_labels' fill reached as inside (interior_labels
+/// gives them 0); that is, exactly interior_labels' labels with
+/// kExcludedOdd read as 0, when those are the same for every order of the
+/// cells (extract.cpp, even_walls, and every wall a facet of the
+/// triangulation). A call completes the labels an earlier one left where
+/// they still hold (RegularTriangulation::complete_labels: the cells made
+/// since take theirs from their neighbours) and fills the whole
+/// triangulation only where they do not. Returns false
 /// when they may not be (the labels are then unusable:
 /// take interior_labels on a cell graph in the order wanted) or, with
 /// `scan`, when the meter stopped the run (polled as a phase's scan; the

@@ -113,7 +113,8 @@ void Pump::prepare() {
     std::size_t cells = 0;
     tri_.visit_labels([&](const Tet&, char&) { ++cells; });
     labels_.reset(cells);
-    if (!tri_.visit_labels([&](const Tet& t, char& inside) { labels_.set(key_of(t), inside); }, poll)) return;
+    // 1 inside; 0, or kExcludedOdd for a flat tet in an input facet, outside.
+    if (!tri_.visit_labels([&](const Tet& t, char& label) { labels_.set(key_of(t), char(label == 1)); }, poll)) return;
     const bool done = tri_.visit_labelled(
         1,
         [&](const Tet& t, const std::array<char, 4>&) {
