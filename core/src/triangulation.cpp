@@ -1262,6 +1262,33 @@ void PlanarDelaunay::edge_triangles(int a, int b, std::vector<std::array<int, 3>
     if (!dt.is_infinite(g)) out.push_back({{g->vertex(0)->info(), g->vertex(1)->info(), g->vertex(2)->info()}});
 }
 
+bool PlanarDelaunay::find_triangle(int a, int b, int c, std::array<int, 3>& out) const {
+  const Dt2& dt = impl_->dt();
+  if (a == b || b == c || a == c || dt.dimension() < 2) return false;
+  const std::array<Dt2::Vertex_handle, 3> v{{impl_->by_id.find(a), impl_->by_id.find(b), impl_->by_id.find(c)}};
+  for (const Dt2::Vertex_handle& x : v)
+    if (x == Dt2::Vertex_handle()) return false;
+  // Each walk visits the star of its vertex looking for a face holding the
+  // other two; a walk that ends without one proves there is no such face
+  // (it would be in every one of the three stars).
+  std::array<Dt2::Face_circulator, 3> f{{dt.incident_faces(v[0]), dt.incident_faces(v[1]), dt.incident_faces(v[2])}};
+  const std::array<Dt2::Face_circulator, 3> done = f;
+  for (const Dt2::Face_circulator& x : f)
+    if (x == nullptr) return false;
+  const std::size_t bound = impl_->star_bound();
+  const std::array<int, 3> ids{{a, b, c}};
+  for (std::size_t n = 0;; ++n) {
+    for (int k = 0; k < 3; ++k) {
+      if (n >= bound) impl_->exceeded("find_triangle", ids[k]);
+      if (f[k]->has_vertex(v[(k + 1) % 3]) && f[k]->has_vertex(v[(k + 2) % 3])) {
+        out = {{f[k]->vertex(0)->info(), f[k]->vertex(1)->info(), f[k]->vertex(2)->info()}};
+        return true;
+      }
+      if (++f[k] == done[k]) return false;
+    }
+  }
+}
+
 std::size_t PlanarDelaunay::size() const { return impl_->dt().number_of_vertices(); }
 
 }  // namespace wqmesh

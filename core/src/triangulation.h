@@ -274,6 +274,14 @@ class PlanarDelaunay {
   /// Every star walk here is bounded by size() + 2 faces and throws
   /// LoopBoundError past it.
   void edge_triangles(int a, int b, std::vector<std::array<int, 3>>& out) const;
+  /// Whether the points with ids a, b and c (in any order) span a finite
+  /// triangle here; `out` then gets it as triangles() gives it (counter-
+  /// clockwise, the same rotation). The same answer as edge_triangles(a, b)
+  /// searched for c, in O(3 times the smallest of the three degrees): the
+  /// stars of a, b and c are walked in turn (beyond the paper, issue 15: a
+  /// subfacet's two older vertices are often fan apexes, its newest one
+  /// seldom), each bounded as edge_triangles' walks.
+  bool find_triangle(int a, int b, int c, std::array<int, 3>& out) const;
   std::size_t size() const;
 
  private:

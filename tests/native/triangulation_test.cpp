@@ -481,6 +481,53 @@ TEST(Triangulation, PlanarDelaunayFanApexAndEdgeTriangles) {
   EXPECT_TRUE(on_edge.empty());
 }
 
+TEST(Triangulation, PlanarDelaunayFindTriangleAnswersAsTheListOfTriangles) {
+  // find_triangle (issue 15) against the list of triangles(): every listed
+  // triangle is found from each order of its three ids, with the listed
+  // rotation; triples that are no triangle (around a fan apex, at random,
+  // with an id not in the triangulation or repeated) are not.
+  PlanarDelaunay d;
+  d.set_plane({0, 0, 1});
+  const int n = 120;
+  d.insert({0.5, 10, 0}, 0);  // the apex of a fan over the segment below
+  for (int i = 0; i <= n; ++i) d.insert({double(i) / n, 0, 0}, 1 + i);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 80; ++i) d.insert({u(rng), 2 + 6 * u(rng), 0}, 200 + i);
+  const std::vector<std::array<int, 3>> list = d.triangles();
+  std::set<std::array<int, 3>> sorted_list;
+  for (std::array<int, 3> t : list) {
+    std::array<int, 3> found{};
+    std::array<int, 3> p = t;
+    std::sort(p.begin(), p.end());
+    do {
+      ASSERT_TRUE(d.find_triangle(p[0], p[1], p[2], found));
+      EXPECT_EQ(found, t);
+    } while (std::next_permutation(p.begin(), p.end()));
+    std::sort(t.begin(), t.end());
+    sorted_list.insert(t);
+  }
+  std::vector<int> ids{0};
+  for (int i = 0; i <= n; ++i) ids.push_back(1 + i);
+  for (int i = 0; i < 80; ++i) ids.push_back(200 + i);
+  std::uniform_int_distribution<std::size_t> pick(0, ids.size() - 1);
+  int absent = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::array<int, 3> t{{ids[pick(rng)], ids[pick(rng)], ids[pick(rng)]}};
+    if (i % 3 == 0) t[0] = 0;  // the fan apex: a walk of its long star ends late
+    std::array<int, 3> found{};
+    std::array<int, 3> s = t;
+    std::sort(s.begin(), s.end());
+    const bool listed = s[0] != s[1] && s[1] != s[2] && sorted_list.count(s) > 0;
+    EXPECT_EQ(d.find_triangle(t[0], t[1], t[2], found), listed);
+    absent += !listed;
+  }
+  EXPECT_GT(absent, 1000);
+  std::array<int, 3> found{};
+  EXPECT_FALSE(d.find_triangle(0, 1, 999, found));  // no such point
+  EXPECT_FALSE(d.find_triangle(1, 1, 2, found));
+}
+
 // The planar triangulation is Delaunay within the (tilted) plane, not in the
 // projection it uses for orientation: compared with a brute-force empty-circle
 // search in orthonormal coordinates of the plane z = 2x.

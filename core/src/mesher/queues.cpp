@@ -224,12 +224,11 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
         // The triangle as f's planar triangulation holds it (its rotation
         // is the subfacet's, as the walk of enqueue_around gives it).
         meter_.poll(1);
-        sub_.facet_triangulation(f).edge_triangles(t[0], t[1], pair);
-        for (const Tri& u : pair)
-          if ((u[0] == t[2] || u[1] == t[2] || u[2] == t[2]) && sub_.lies_in_facet(f, u)) {
-            order.push_back({{t[0], int(fi), 0}, found.size()});
-            found.push_back({f, u});
-          }
+        Tri u;
+        if (sub_.facet_triangulation(f).find_triangle(t[0], t[1], t[2], u) && sub_.lies_in_facet(f, u)) {
+          order.push_back({{t[0], int(fi), 0}, found.size()});
+          found.push_back({f, u});
+        }
       }
     }
     // The place in the star matters only between subfacets of one facet at

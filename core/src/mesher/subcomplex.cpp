@@ -110,13 +110,11 @@ void Subcomplex::subfacets_at(int f, int v, std::vector<Tri>& out) const {
 }
 
 bool Subcomplex::is_subfacet(int f, const Tri& t) const {
-  // A triangle of f's planar triangulation (found among the two on its edge
-  // t[0] t[1]), then in f: the costlier test runs on that one triangle only.
-  std::vector<Tri> around;
-  live_facet_dt(f).edge_triangles(t[0], t[1], around);
-  for (const Tri& u : around)
-    if (u[0] == t[2] || u[1] == t[2] || u[2] == t[2]) return lies_in_facet(f, u);
-  return false;
+  // A triangle of f's planar triangulation (found by the walks of its
+  // three vertices' stars in turn), then in f: the costlier test runs on
+  // that one triangle only.
+  Tri u;
+  return live_facet_dt(f).find_triangle(t[0], t[1], t[2], u) && lies_in_facet(f, u);
 }
 
 std::vector<Subfacet> Subcomplex::subfacets() const {
