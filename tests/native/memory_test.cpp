@@ -345,6 +345,23 @@ TEST(Memory, CompletedLabelsAreAFreshFillsAfterInsertionsAndWeightChanges) {
   if (!shared.empty()) EXPECT_GT(after_rule7, 0u);
 }
 
+// PUMP's first label table has room for the cells its weight changes make
+// (Pump::kNewCellRoom): on models where it pumps, no second table is added.
+TEST(Memory, PumpsNewCellsFitItsFirstLabelTable) {
+  std::size_t pumped = 0;
+  for (const std::string name : {"spike.off", "slit.off", "edge_facet.off", "thin_wedge.off"}) {
+    SCOPED_TRACE(name);
+    const LoadedModel s(name);
+    mesher::Mesher m(s.dom, s.o, s.none);
+    refine(m);
+    mesher::Pump p = m.make_pump();
+    p.run();
+    pumped += p.pumped_vertices();
+    EXPECT_EQ(p.label_tables(), 1u);
+  }
+  EXPECT_GT(pumped, 0u);
+}
+
 // mesh_polyhedron frees V's triangulation and the subcomplex before the
 // improvement phase, and the phase frees the stale per-tet measures before
 // it builds its own arrays (improve.h): when the phase reports its start,

@@ -112,7 +112,7 @@ void Pump::prepare() {
     cell_labels_ = false;
     std::size_t cells = 0;
     tri_.visit_labels([&](const Tet&, char&) { ++cells; });
-    labels_.reset(cells);
+    labels_.reset(cells + cells / kNewCellRoom);
     // 1 inside; 0, or kExcludedOdd for a flat tet in an input facet, outside.
     if (!tri_.visit_labels([&](const Tet& t, char& label) { labels_.set(key_of(t), char(label == 1)); }, poll)) return;
     const bool done = tri_.visit_labelled(
@@ -163,7 +163,7 @@ void Pump::prepare_from_scan() {
     inside = interior_labels(dom_, sub_, g, meter_, true);
     if (meter_.stopped()) return;
   }
-  labels_.reset(g.cells.size());
+  labels_.reset(g.cells.size() + g.cells.size() / kNewCellRoom);
   for (std::size_t i = 0; i < g.cells.size(); ++i) {
     if (!meter_.poll(1, false)) return;
     labels_.set(key_of(g.cells[i]), inside[i]);

@@ -107,6 +107,16 @@ class Pump {
   /// weights; keeps the old weight unless the new one is strictly better.
   Choice pump_vertex(int v);
 
+  /// The label tables of prepare() and run() (tests watch the growth).
+  std::size_t label_tables() const { return labels_.tables(); }
+
+  /// Beyond the paper (issue 15, the peak memory): the first label table
+  /// has room for the cells and 1/kNewCellRoom as many new ones, the cells
+  /// PUMP's weight changes make (1.3% of the cells on anchor.off, 1.5% on
+  /// fandisk.off, 0.4% on part.off), so that no second table (half the
+  /// keys: 48 MB on mpi.off, BENCHMARKS.md, session 6 h8) is added for
+  /// them; one is added beyond that room, as before.
+  static constexpr std::size_t kNewCellRoom = 16;
   /// At most kLabelRounds rounds of label propagation for a new cell.
   static constexpr int kLabelRounds = 64;
   /// At most kCriticalSteps critical weights visited per vertex (a choice:
