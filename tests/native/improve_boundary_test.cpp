@@ -12,7 +12,9 @@
 
 #include "geometry.h"
 #include "mesh_invariants.h"
+#include "mesher/classify.h"
 #include "mesher/improve.h"
+#include "mesher/protecting_balls.h"
 #include "wqmesh/quality.h"
 
 namespace wqmesh {
@@ -68,6 +70,13 @@ TEST(ImproveBoundary, PointsInsertedOnFacetsKeepTheMeshConformingAndTheWorstTetN
       EXPECT_GE(star, 2);
     }
     im.finish();
+    // The statistics' classes are those of the mesh before the insertions:
+    // classify the mesh written back again (classify_tets, as the phase's
+    // caller does) before its invariants, which count its violations.
+    mesher::ProtectingBalls balls(in.analysis.bounding_box);
+    balls.set(r.protecting_balls);
+    ASSERT_TRUE(mesher::classify_tets(r, balls, opt));
+    ASSERT_EQ(r.tet_class.size(), r.mesh.tets.size());
     invariants::expect_invariants(f, in, r);
     inserted_all += inserted;
   }
