@@ -860,13 +860,18 @@ double Improver::dihedral(int t) const {
   return dih_[t];
 }
 
-double Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes) {
+double Improver::worst_min_sine(const std::vector<Tet>& fresh) const {
+  double worst = HUGE_VAL;
+  for (const Tet& T : fresh) worst = std::min(worst, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+  return worst;
+}
+
+double Improver::ascend_new_point(int p_id, const std::vector<Tet>& fresh, double start, int axes) {
   const Point3 p = P_[p_id];
-  double lmin = HUGE_VAL, current = HUGE_VAL;
-  for (const Tet& T : fresh) {
-    current = std::min(current, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+  double lmin = HUGE_VAL;
+  const double current = start;
+  for (const Tet& T : fresh)
     for (int k = 0; k < 3; ++k) lmin = std::min(lmin, geometry::dist2(P_[T[k]], p));
-  }
   lmin = std::sqrt(lmin);
   if (!(lmin > 0)) return current;
   return ascend(
@@ -1030,7 +1035,7 @@ bool Improver::insert(int t) {
       // Beyond Stellar's rule as written: the new point is first placed by
       // the smoothing ascent on its own star (the cavity stays), then the
       // insertion is judged.
-      const double placed = ascend_new_point(p_id, fresh);
+      const double placed = ascend_new_point(p_id, fresh, worst_min_sine(fresh));
       vtet_.push_back(-1);
       double w;
       if (placed > best && accept(cav, fresh, w) && w > best) {

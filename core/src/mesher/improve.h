@@ -319,8 +319,11 @@ class Improver {
   /// place their point so before they are judged. Returns fresh's worst
   /// min-sine at the point placed (what accept() computes for it, bit for
   /// bit: the callers skip the guards of a candidate that cannot beat the
-  /// best one so far).
-  double ascend_new_point(int p_id, const std::vector<Tet>& fresh, int axes = 7);
+  /// best one so far). `start` is fresh's worst min-sine at the point before
+  /// the ascent (worst_min_sine(fresh)), which the caller may have needed too.
+  double ascend_new_point(int p_id, const std::vector<Tet>& fresh, double start, int axes = 7);
+  /// The smallest min-sine of the tets `fresh` (indices into P_), in their order.
+  double worst_min_sine(const std::vector<Tet>& fresh) const;
 
   MeshResult& r_;
   double rho_, max_size_;

@@ -353,17 +353,15 @@ bool Improver::insert_boundary(int t) {
         // candidate whose new tets' worst at p, before the ascent, is below
         // kInsertBoundaryStart times the cavity's worst is refused (the
         // ascent seldom lifts it so far; see the constant).
-        if (!fixing_) {
-          double start = HUGE_VAL;
-          for (const Tet& T : fresh) start = std::min(start, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
-          if (start < kInsertBoundaryStart * worst_old) {
-            P_.pop_back();
-            continue;
-          }
+        // The ascent starts from the same value.
+        const double start = worst_min_sine(fresh);
+        if (!fixing_ && start < kInsertBoundaryStart * worst_old) {
+          P_.pop_back();
+          continue;
         }
         // The new point is first slid along the facet's axes by the smoothing
         // ascent on its own star (the cavity stays), then the insertion is judged.
-        const double placed = ascend_new_point(p_id, fresh, axes);
+        const double placed = ascend_new_point(p_id, fresh, start, axes);
         vtet_.push_back(-1);
         // placed is what accept() computes as the new worst, bit for bit
         // (ascend_new_point): a candidate that does not beat the cavity's
