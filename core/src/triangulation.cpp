@@ -269,6 +269,12 @@ struct RegularTriangulation::Impl {
     const Rt::Cell_handle c = Cells::s_iterator_to(const_cast<Cell&>(*static_cast<const Cell*>(ref)));
     return rt.tds().cells().is_used(c) ? c : Rt::Cell_handle();
   }
+  // cell_of(ref), which must be a cell (label(), set_label(), neighbour()).
+  Rt::Cell_handle live_cell(CellRef ref) const {
+    const Rt::Cell_handle c = cell_of(ref);
+    if (c == Rt::Cell_handle()) throw std::logic_error("RegularTriangulation: a CellRef of no cell");
+    return c;
+  }
   // The vertices of the cells around edge (c, i, j) other than its ends,
   // sorted, without repeats (edge_ring's answer).
   void ring_of(Rt::Cell_handle c, int i, int j, std::vector<int>& out) const {
@@ -861,6 +867,16 @@ bool RegularTriangulation::visit_labelled(char label,
     visit(impl_->tet_of(c), across);
   }
   return true;
+}
+
+char RegularTriangulation::label(CellRef ref) const { return impl_->live_cell(ref)->info().value; }
+
+void RegularTriangulation::set_label(CellRef ref, char label) const { impl_->live_cell(ref)->info().value = label; }
+
+CellRef RegularTriangulation::neighbour(CellRef ref, int k, Tet& across) const {
+  const Rt::Cell_handle n = impl_->live_cell(ref)->neighbor(k);
+  across = impl_->tet_of(n);
+  return static_cast<CellRef>(&*n);
 }
 
 // ---- PlanarDelaunay ----------------------------------------------------------

@@ -210,6 +210,18 @@ class RegularTriangulation {
   /// the labels of its four neighbours (across[k]: the cell opposite t[k]).
   bool visit_labelled(char label, const std::function<void(const Tet& t, const std::array<char, 4>& across)>& visit,
                       const std::function<bool(std::size_t)>& poll = {}) const;
+  /// The label byte of the cell behind `ref`, a CellRef of a cell that
+  /// still exists (incident_cells' or neighbour's, the triangulation unchanged
+  /// since; std::logic_error otherwise), and its setting: O(1), no search
+  /// (beyond the paper, issue 15: PUMP keeps its labels there, not in a table
+  /// keyed by cells).
+  char label(CellRef ref) const;
+  void set_label(CellRef ref, char label) const;
+  /// The cell opposite t[k] across its facet, where t is the cell behind
+  /// `ref` as incident_cells gave it (same contract as label()): its
+  /// CellRef, and its vertices in `across` (kInfinite in an infinite one).
+  /// The same cell as facet_cells gives for that facet, in O(1).
+  CellRef neighbour(CellRef ref, int k, Tet& across) const;
 
  private:
   struct Impl;

@@ -362,6 +362,64 @@ TEST(Memory, PumpsNewCellsFitItsFirstLabelTable) {
   EXPECT_GT(pumped, 0u);
 }
 
+// PUMP on the labels in the cells (use_cell_labels) keeps its labels there,
+// with no table (issue 15, the peak memory), and pumps as PUMP on a label
+// table of its own scan does: the same weights, the same mesh. The labels
+// it leaves in the cells are those of a fresh fill of the pumped
+// triangulation, wherever the fill is free of the order.
+TEST(Memory, PumpKeepsItsLabelsInTheCells) {
+  std::size_t pumped = 0, in_cells = 0;
+  for (const std::string name : {"spike.off", "edge_facet.off", "thin_wedge.off", "bracket.off"}) {
+    SCOPED_TRACE(name);
+    const LoadedModel s(name);
+    // A larger sliver bound than the default (3 degrees) so that PUMP has
+    // work on these small models.
+    MeshOptions o = s.o;
+    o.theta_deg = 20;
+    mesher::Mesher a(s.dom, o, s.none), b(s.dom, o, s.none);
+    refine(a);
+    refine(b);
+    RegularTriangulation::CellGraph scan;
+    std::vector<char> scan_labels;
+    std::vector<double> nn;
+    bool cells = false;
+    mesher::Extract(s.dom, o, a.triangulation(), a.vertices(), a.subcomplex(), a.balls(), nn, a.meter())
+        .count_qmesh_slivers(scan, scan_labels, cells);
+    if (!cells) continue;
+    ++in_cells;
+    mesher::Pump p = a.make_pump();
+    p.use_cell_labels();
+    p.run();
+    EXPECT_EQ(p.label_tables(), 0u);
+    mesher::Pump q = b.make_pump();
+    q.run();
+    EXPECT_GE(q.label_tables(), 1u);
+    EXPECT_EQ(p.pumped_vertices(), q.pumped_vertices());
+    pumped += p.pumped_vertices();
+    const RegularTriangulation& ta = a.triangulation();
+    for (int v = 0; v < ta.number_of_vertices(); ++v) EXPECT_EQ(ta.weight(v), b.triangulation().weight(v)) << v;
+    // The labels PUMP left (0 or 1 on cells it or the count labelled) are
+    // the fill's.
+    const RegularTriangulation::CellGraph g = ta.cell_graph();
+    bool order_free = false;
+    const std::vector<char> fresh = mesher::interior_labels(s.dom, a.subcomplex(), g, a.meter(), false, &order_free);
+    ASSERT_TRUE(order_free);
+    std::size_t i = 0, compared = 0;
+    ta.visit_labels([&](const Tet& t, char& label) {
+      const bool finite = std::find(t.begin(), t.end(), kInfinite) == t.end();
+      if (finite && !a.subcomplex().flat_on_facet(t) && label != RegularTriangulation::kUnlabelled) {
+        EXPECT_EQ(label, fresh[i]) << i;
+        ++compared;
+      }
+      ++i;
+    });
+    EXPECT_GT(compared, 0u);
+    expect_same_mesh(a.extract_mesh(), b.extract_mesh());
+  }
+  EXPECT_GT(in_cells, 0u);
+  EXPECT_GT(pumped, 0u);
+}
+
 // mesh_polyhedron frees V's triangulation and the subcomplex before the
 // improvement phase, and the phase frees the stale per-tet measures before
 // it builds its own arrays (improve.h): when the phase reports its start,

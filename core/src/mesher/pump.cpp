@@ -107,14 +107,12 @@ void Pump::prepare() {
   if (!mesher::nearest_neighbours(tri_, nn_, poll) || meter_.stopped()) return;
   candidates_.clear();
   if (cell_labels_) {
-    // The labels in the cells (use_cell_labels): every cell's into the
-    // table, the candidates from the inside ones.
+    // The labels in the cells (use_cell_labels) stay there: label() reads
+    // and completes them in place, no table (beyond the paper, issue 15, the
+    // peak memory: the table was 24 bytes a cell at PUMP's peak). The
+    // candidates from the inside cells.
     cell_labels_ = false;
-    std::size_t cells = 0;
-    tri_.visit_labels([&](const Tet&, char&) { ++cells; });
-    labels_.reset(cells + cells / kNewCellRoom);
-    // 1 inside; 0, or kExcludedOdd for a flat tet in an input facet, outside.
-    if (!tri_.visit_labels([&](const Tet& t, char& label) { labels_.set(key_of(t), char(label == 1)); }, poll)) return;
+    in_cells_ = true;
     const bool done = tri_.visit_labelled(
         1,
         [&](const Tet& t, const std::array<char, 4>&) {
@@ -201,9 +199,11 @@ void Pump::run() {
       if (c.quality > c.base) improved = true;
       // Slivers left or made around v are visited in the next pass.
       std::vector<Tet> star;
-      tri_.incident_cells(v, star);
-      for (const Tet& t : star) {
-        if (std::count(t.begin(), t.end(), kInfinite) || !label(t)) continue;
+      std::vector<CellRef> refs;
+      tri_.incident_cells(v, star, &refs);
+      for (std::size_t i = 0; i < star.size(); ++i) {
+        const Tet& t = star[i];
+        if (std::count(t.begin(), t.end(), kInfinite) || !label(t, refs[i])) continue;
         const double b = angle_of(t);
         if (b <= opt_.theta_deg)
           for (int x : t) next.push_back({b, x});
@@ -223,52 +223,86 @@ bool Pump::is_wall(int a, int b, int c) const {
   return std::binary_search(walls_.begin(), walls_.end(), sorted({{a, b, c}}));
 }
 
-char Pump::label(const Tet& t) {
+int Pump::known(const Tet& t, CellRef ref) const {
+  if (in_cells_) {
+    // 0, 1, or kExcludedOdd (outside, as the table has it) once labelled.
+    const char byte = tri_.label(ref);
+    return byte == RegularTriangulation::kUnlabelled ? -1 : int(byte == 1);
+  }
+  const char* label = labels_.find(key_of(t));
+  return label ? *label : -1;
+}
+
+void Pump::learn(const Tet& t, CellRef ref, char label) {
+  if (in_cells_)
+    tri_.set_label(ref, label);
+  else
+    labels_.set(key_of(t), label);
+}
+
+char Pump::label(const Tet& t, CellRef ref) {
   // Inside (1) or outside (0). Cells made by a weight change take the label
   // of a neighbour across a facet, flipped when the facet is a wall; the
   // changed region is surrounded by cells known before.
+  //
+  // In the cells (in_cells_), every cell a weight change makes is new,
+  // those with the vertices of a cell that was labelled before included
+  // (the table kept their labels by key). They take theirs across facets
+  // too, and it is the same label: PUMP labels only where every wall is a
+  // facet (evaluate() checks the features around v before and after the
+  // change; the labels in the cells are label_cells_in_place's, whose walls
+  // are even, so the labels are the only consistent ones), where the label
+  // of a cell of nonzero volume is the parity of the walls crossed by a path
+  // from its interior to infinity, fixed by its four points, whatever the
+  // triangulation around it (flat tets in a facet are no part of it: 0
+  // below and skipped as neighbours).
   if (std::count(t.begin(), t.end(), kInfinite) || sub_.flat_on_facet(t)) return 0;
-  if (const char* known = labels_.find(key_of(t))) return *known;
+  if (const int label = known(t, ref); label >= 0) return char(label);
+  struct Cell {
+    Tet t;
+    CellRef ref;
+  };
+  const auto by_key = [](const Cell& a, const Cell& b) { return key_of(a.t) < key_of(b.t); };
+  const auto same = [](const Cell& a, const Cell& b) { return key_of(a.t) == key_of(b.t); };
   // At most kLabelRounds rounds, each over a deduplicated list of cells.
-  std::vector<Tet> todo{t};
+  std::vector<Cell> todo{{t, ref}};
   for (int round = 0; round < kLabelRounds && !todo.empty(); ++round) {
-    std::sort(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) < key_of(b); });
-    todo.erase(std::unique(todo.begin(), todo.end(), [](const Tet& a, const Tet& b) { return key_of(a) == key_of(b); }),
-               todo.end());
+    std::sort(todo.begin(), todo.end(), by_key);
+    todo.erase(std::unique(todo.begin(), todo.end(), same), todo.end());
     meter_.poll(todo.size());
-    std::vector<Tet> later;
-    for (const Tet& c : todo) {
-      if (labels_.find(key_of(c))) continue;
+    std::vector<Cell> later;
+    for (const Cell& c : todo) {
+      if (known(c.t, c.ref) >= 0) continue;
       bool done = false;
       for (int k = 0; k < 4 && !done; ++k) {
-        const int a = c[(k + 1) % 4], b = c[(k + 2) % 4], d = c[(k + 3) % 4];
+        const int a = c.t[(k + 1) % 4], b = c.t[(k + 2) % 4], d = c.t[(k + 3) % 4];
         if (a == kInfinite || b == kInfinite || d == kInfinite) continue;
-        Tet c1, c2;
-        if (!tri_.facet_cells(a, b, d, c1, c2)) continue;
-        const Tet& other = key_of(c1) == key_of(c) ? c2 : c1;
-        if (sub_.flat_on_facet(other)) continue;  // its label says nothing
+        // The cell across facet abd (facet_cells' other cell, in O(1)).
+        Cell other;
+        other.ref = tri_.neighbour(c.ref, k, other.t);
+        if (sub_.flat_on_facet(other.t)) continue;  // its label says nothing
         char lo;
-        if (std::count(other.begin(), other.end(), kInfinite)) {
+        if (std::count(other.t.begin(), other.t.end(), kInfinite)) {
           lo = 0;
         } else {
-          const char* known = labels_.find(key_of(other));
-          if (!known) {
+          const int label = known(other.t, other.ref);
+          if (label < 0) {
             later.push_back(other);
             continue;
           }
-          lo = *known;
+          lo = char(label);
         }
-        labels_.set(key_of(c), is_wall(a, b, d) ? char(1 - lo) : lo);
+        learn(c.t, c.ref, is_wall(a, b, d) ? char(1 - lo) : lo);
         done = true;
       }
       if (!done) later.push_back(c);
     }
-    if (!labels_.find(key_of(t))) later.push_back(t);  // retry after its neighbours
+    if (known(t, ref) < 0) later.push_back({t, ref});  // retry after its neighbours
     todo.swap(later);
   }
-  const char* known = labels_.find(key_of(t));
-  if (!known) meter_.cap_reached();  // kLabelRounds: taken as outside
-  return known ? *known : 0;
+  const int label = known(t, ref);
+  if (label < 0) meter_.cap_reached();  // kLabelRounds: taken as outside
+  return label >= 0 ? char(label) : 0;
 }
 
 Pump::Features Pump::features_around(int v) const {
@@ -306,11 +340,13 @@ double Pump::evaluate(int v, double w, const Features& f) {
   // swallows cells whose facets join the new neighbours of v.
   if (!present(f) || !present(features_around(v))) return -1;
   std::vector<Tet> star;
-  tri_.incident_cells(v, star);
+  std::vector<CellRef> refs;
+  tri_.incident_cells(v, star, &refs);
   meter_.poll(star.size() + f.segments.size() + f.subfacets.size());
   double worst = 180;
-  for (const Tet& t : star)
-    if (!std::count(t.begin(), t.end(), kInfinite) && label(t)) worst = std::min(worst, angle_of(t));
+  for (std::size_t i = 0; i < star.size(); ++i)
+    if (!std::count(star[i].begin(), star[i].end(), kInfinite) && label(star[i], refs[i]))
+      worst = std::min(worst, angle_of(star[i]));
   return worst;
 }
 

@@ -24,8 +24,10 @@ namespace wqmesh::mesher {
 /// The inside/outside label of cells by their TetKey: open-addressing
 /// tables (linear probing, each at most 3/4 full) with the labels in a byte
 /// array beside the keys, 17 bytes a slot. Beyond the paper (issue 15, the
-/// peak memory): it holds every cell of V's triangulation while PUMP runs,
-/// where a std::unordered_map took about 70 bytes a cell (a node per entry
+/// peak memory): it holds every cell of V's triangulation while PUMP runs
+/// on labels that may depend on the cells' order (Pump::use_scan, or PUMP's
+/// own scan; with use_cell_labels the labels stay in the cells and there is
+/// no table), where a std::unordered_map took about 70 bytes a cell (a node per entry
 /// and the buckets). PUMP adds the cells its weight changes make, so the
 /// keys outgrow the first table: then a further table is added beside the
 /// full ones, with room for half as many keys as there are, instead of
@@ -75,7 +77,8 @@ class Pump {
   /// Tells prepare() that the cells' label bytes of the current
   /// triangulation hold their interior_labels (label_cells_in_place, by
   /// Extract::count_qmesh_slivers just before): it reads them there, with
-  /// no cell graph (beyond the paper, issue 15, the peak memory).
+  /// no cell graph, and keeps PUMP's labels there too (no table; beyond
+  /// the paper, issue 15, the peak memory).
   void use_cell_labels() { cell_labels_ = true; }
   void run();
   /// (smallest dihedral, vertex) for the vertices of inside tets with a
@@ -129,7 +132,12 @@ class Pump {
   void prepare_from_scan();
   double angle_of(const Tet& t) const;
   bool is_wall(int a, int b, int c) const;
-  char label(const Tet& t);
+  /// The label of cell t, `ref` its CellRef (incident_cells'), found by
+  /// propagation when it has none yet.
+  char label(const Tet& t, CellRef ref);
+  /// t's label (0 or 1) where PUMP keeps them, -1 when it has none.
+  int known(const Tet& t, CellRef ref) const;
+  void learn(const Tet& t, CellRef ref, char label);
   double next_critical(int v, double w, double cap) const;
   bool present(const Features& f) const;
 
@@ -155,6 +163,9 @@ class Pump {
   RegularTriangulation::CellGraph scan_;  ///< use_scan's, until prepare()
   std::vector<char> scan_labels_;
   bool cell_labels_ = false;  ///< use_cell_labels(), until prepare()
+  /// The labels are in the cells' label bytes (use_cell_labels), not in
+  /// labels_, from prepare() on.
+  bool in_cells_ = false;
 };
 
 }  // namespace wqmesh::mesher
