@@ -12,14 +12,13 @@
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { existsSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
+import { dirname, join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath } from 'node:url';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
+import { cli, root, skipCli } from './lib/setup.mjs';
+
 const TETGEN = '/usr/bin/tetgen';
-const skip = (!existsSync(cli) && 'the native build is missing') ||
+const skip = skipCli ||
   (!existsSync(TETGEN) && `${TETGEN} is missing (apt-get install tetgen): no TetGen to compare with`);
 const models = ['box.off', 'slit.off'];
 

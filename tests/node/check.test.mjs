@@ -9,19 +9,15 @@
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { existsSync, readdirSync, readFileSync } from 'node:fs';
-import { dirname, join, relative, resolve } from 'node:path';
+import { join, relative } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
+import { cli, loadModule, root } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const moduleUrl = process.env.WQMESH_MODULE ? pathToFileURL(resolve(process.env.WQMESH_MODULE)) : undefined;
 const modelDirs = [join(root, '../shared/models'), join(root, 'examples/models')];
 const TOLERANCE = 1e-12;
 
-const wqmesh = await loadWqmesh({ moduleUrl });
+const wqmesh = await loadModule();
 
 function models() {
   const files = [];

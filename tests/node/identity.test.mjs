@@ -11,21 +11,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
-import { after, test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { existsSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { test } from 'node:test';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
+import { cli, loadModule, root, skipCli, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const skipCli = !existsSync(cli) && 'the native build is missing';
-const moduleUrl = pathToFileURL(resolve(process.env.WQMESH_MODULE ?? join(root, 'build/wasm/wasm/wqmesh.mjs')));
-const wqmesh = await loadWqmesh({ moduleUrl });
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-identity-'));
-after(() => rmSync(work, { recursive: true, force: true }));
+const wqmesh = await loadModule({ build: true });
+const work = workDir('identity');
 
 /** The vertices (x, y, z each) and 0-based tets of a Medit file the command line wrote. */
 function medit(path) {

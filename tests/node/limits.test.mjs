@@ -19,23 +19,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { closeSync, existsSync, ftruncateSync, mkdtempSync, openSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { closeSync, existsSync, ftruncateSync, openSync, readFileSync, writeFileSync } from 'node:fs';
+import { dirname, join } from 'node:path';
 import { after, test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
 
 import { loadWqmesh } from '../../wasm/index.mjs';
+import { cli, loadModule, modulePath, root, skipCli, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const skipCli = !existsSync(cli) && 'the native build is missing';
-const modulePath = resolve(process.env.WQMESH_MODULE ?? join(root, 'build/wasm/wasm/wqmesh.mjs'));
-const moduleUrl = pathToFileURL(modulePath);
-const mem32Path = join(dirname(modulePath), 'wqmesh-mem32.mjs');
-const wqmesh = await loadWqmesh({ moduleUrl });
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-limits-'));
-after(() => rmSync(work, { recursive: true, force: true }));
+const mem32Path = join(dirname(modulePath({ build: true })), 'wqmesh-mem32.mjs');
+const wqmesh = await loadModule({ build: true });
+const work = workDir('limits');
 const run = (...args) => spawnSync(cli, args, { encoding: 'utf8', timeout: 60_000 });
 const model = (name) => readFileSync(join(root, 'examples/models', name));
 

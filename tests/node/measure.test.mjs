@@ -7,16 +7,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath } from 'node:url';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const skip = !existsSync(cli) && 'the native build is missing';
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-measure-'));
+import { cli, root, skipCli, workDir } from './lib/setup.mjs';
+
+const skip = skipCli;
+const work = workDir('measure');
 const spike = join(root, 'examples/models/spike.off');
 const run = (...args) => spawnSync(cli, args, { encoding: 'utf8' });
 

@@ -8,20 +8,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { existsSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
 import { tetVolumes } from './lib/tets.mjs';
+import { cli, loadModule, root, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const moduleUrl = process.env.WQMESH_MODULE ? pathToFileURL(resolve(process.env.WQMESH_MODULE)) : undefined;
-const wqmesh = await loadWqmesh({ moduleUrl });
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-node-'));
+const wqmesh = await loadModule();
+const work = workDir('node');
 
 function nativeStats(model) {
   const stats = join(work, 'stats.json');

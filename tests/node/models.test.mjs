@@ -13,19 +13,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { basename, dirname, join, resolve } from 'node:path';
-import { after, test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { existsSync, readdirSync, readFileSync } from 'node:fs';
+import { basename, join } from 'node:path';
+import { test } from 'node:test';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
 import { errorKinds } from './lib/names.mjs';
+import { cli, loadModule, root, skipCli, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
 const shared = join(root, '../shared/models');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const moduleUrl = process.env.WQMESH_MODULE ? pathToFileURL(resolve(process.env.WQMESH_MODULE)) : undefined;
 const MAX_VERTICES = 10000;
 const DEADLINE_MS = 120_000;  // per run: beyond it, a hang
 const MAX_BUFFER = 256 * 2 ** 20;  // the check report of a big model is megabytes long
@@ -39,11 +34,10 @@ const models = existsSync(shared)
   ? readdirSync(shared).filter((n) => /\.(off|stl)$/i.test(n)).sort().map((n) => join(shared, n))
   : [];
 const skip = models.length === 0 && '../shared/models is absent';
-const skipCli = skip || (!existsSync(cli) && 'the native build is missing');
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-models-'));
-after(() => rmSync(work, { recursive: true, force: true }));
+const skipBoth = skip || skipCli;
+const work = workDir('models');
 
-const wqmesh = skip ? null : await loadWqmesh({ moduleUrl });
+const wqmesh = skip ? null : await loadModule();
 
 /** What the command line said about each model: { valid, kind, meshed, stopped }. */
 const native = new Map();
@@ -71,7 +65,7 @@ function checkStats(name, s, stopped) {
 for (const path of models) {
   const name = basename(path);
 
-  test(`command line: ${name}`, { skip: skipCli }, () => {
+  test(`command line: ${name}`, { skip: skipBoth }, () => {
     const t0 = Date.now();
     const check = spawnSync(cli, ['check', path, '--compact'],
                             { encoding: 'utf8', timeout: DEADLINE_MS, maxBuffer: MAX_BUFFER });

@@ -9,17 +9,12 @@
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
-import { dirname, join, resolve } from 'node:path';
+import { join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
 import { version as packagedVersion } from '../../wasm/options.mjs';
 import { cmakeVersion, dtsUnion, errorKinds } from './lib/names.mjs';
-
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const moduleUrl = process.env.WQMESH_MODULE ? pathToFileURL(resolve(process.env.WQMESH_MODULE)) : undefined;
+import { cli, loadModule, root } from './lib/setup.mjs';
 
 test('index.d.ts InputErrorKind is the list of error.h plus internal', () => {
   const kinds = errorKinds();
@@ -46,7 +41,7 @@ test('index.d.ts Phase and stopped are the names of names.h', () => {
 });
 
 test('the wasm module reports kinds of the list', async () => {
-  const wqmesh = await loadWqmesh({ moduleUrl });
+  const wqmesh = await loadModule();
   const kinds = errorKinds();
   for (const bytes of ['', 'OFF\n4 1 0\n0 0 0\n', 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n']) {
     const report = wqmesh.check(new TextEncoder().encode(bytes));
@@ -59,7 +54,7 @@ test('package.json, the wasm module and the command line have the CMake project 
   const version = cmakeVersion();
   assert.equal(JSON.parse(readFileSync(join(root, 'package.json'), 'utf8')).version, version);
   assert.equal(packagedVersion, version, 'wasm/options.mjs (scripts/package_wasm.mjs writes it from the module)');
-  const wqmesh = await loadWqmesh({ moduleUrl });
+  const wqmesh = await loadModule();
   assert.equal(wqmesh.version(), version);
   assert.ok(existsSync(cli), `the native command line is missing (${cli}): build it or set WQMESH_CLI`);
   const r = spawnSync(cli, ['--version'], { encoding: 'utf8' });

@@ -14,21 +14,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
-import { after, test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { test } from 'node:test';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
+import { cli, loadModule, skipCli, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const skipCli = !existsSync(cli) && 'the native build is missing';
-const moduleUrl = pathToFileURL(resolve(process.env.WQMESH_MODULE ?? join(root, 'build/wasm/wasm/wqmesh.mjs')));
-const wqmesh = await loadWqmesh({ moduleUrl });
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-readers-'));
-after(() => rmSync(work, { recursive: true, force: true }));
+const wqmesh = await loadModule({ build: true });
+const work = workDir('readers');
 
 const BOM = Buffer.from([0xef, 0xbb, 0xbf]);
 const CUBE_OFF = 'OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n' +

@@ -12,20 +12,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { test } from 'node:test';
-import { fileURLToPath, pathToFileURL } from 'node:url';
 
-import { loadWqmesh } from '../../wasm/index.mjs';
+import { cli, loadModule, root, skipCli, workDir } from './lib/setup.mjs';
 
-const root = resolve(dirname(fileURLToPath(import.meta.url)), '../..');
-const cli = process.env.WQMESH_CLI ?? join(root, 'build/native/bin/wqmesh');
-const skipNative = !existsSync(cli) && 'the native build is missing';
-const moduleUrl = process.env.WQMESH_MODULE ? pathToFileURL(resolve(process.env.WQMESH_MODULE)) : undefined;
-const wqmesh = await loadWqmesh({ moduleUrl });
-const work = mkdtempSync(join(tmpdir(), 'wqmesh-recount-'));
+const wqmesh = await loadModule();
+const work = workDir('recount');
 const TOL = 1e-9;
 
 const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
@@ -150,7 +144,7 @@ test('the JavaScript result\'s classes and counts equal a recount from its verti
   assert.ok(near > 0, 'the models have tets near small angles to recount');
 });
 
-test('wqmesh measure --stats recounts the classes of the written mesh', { skip: skipNative }, () => {
+test('wqmesh measure --stats recounts the classes of the written mesh', { skip: skipCli }, () => {
   for (const model of models) {
     const mesh = join(work, 'm.mesh'), stats = join(work, 'm.json');
     const m = spawnSync(cli, ['mesh', model, '-o', mesh, '--stats', stats, '--quiet'], { encoding: 'utf8' });
