@@ -526,6 +526,75 @@ TEST(MesherRules, SharpSubsegmentsGetDoubledDiametricBalls) {
 namespace wqmesh {
 namespace {
 
+// The options of REFINE without rule 7 (pump off): plenty of slivers left
+// for PUMP.
+MeshOptions without_rule7() {
+  MeshOptions o;
+  o.pump = false;
+  return o;
+}
+
+// INITIALIZE, CONFORM and REFINE on st's mesher, then PUMP's prepare.
+mesher::Pump prepared_pump(Stage& st) {
+  st.m.initialize();
+  st.m.conform();
+  st.m.refine();
+  mesher::Pump pump = st.m.make_pump();
+  pump.prepare();
+  return pump;
+}
+
+// PUMP's angle key (Pump::angle_key: the pseudo-angle of the cosine and
+// sine, made with +, -, *, / and sqrt only, so that native and wasm order
+// the candidates alike): known values, increasing with the angle, and the
+// pseudo-angle of libm's cosine and sine within rounding.
+TEST(MesherPump, AngleKeyIsThePseudoAngleAndIncreases) {
+  EXPECT_EQ(mesher::Pump::angle_key(0), 0);
+  EXPECT_NEAR(mesher::Pump::angle_key(45), 0.5, 1e-15);
+  EXPECT_NEAR(mesher::Pump::angle_key(90), 1, 1e-15);
+  EXPECT_NEAR(mesher::Pump::angle_key(180), 2, 1e-15);
+  double last = -1;
+  for (int i = 0; i <= 3600; ++i) {
+    const double deg = i / 20.0, x = std::cos(deg * M_PI / 180), y = std::sin(deg * M_PI / 180);
+    const double key = mesher::Pump::angle_key(deg);
+    EXPECT_GT(key, last) << deg;
+    last = key;
+    EXPECT_NEAR(key, x >= 0 ? y / (x + y) : 1 - x / (y - x), 1e-12) << deg;
+  }
+}
+
+// The candidates' keys are those of the smallest dihedral angle of an inside
+// tet at the vertex (tet_min_dihedral_deg's angle, within rounding), at
+// most theta's, worst first.
+TEST(MesherPump, CandidatesKeysAreTheirTetsSmallestAngles) {
+  const std::vector<std::string> files =
+      models(WQMESH_EXAMPLE_MODELS, {"slit.off", "edge_facet.off", "thin_wedge.off"});
+  if (files.empty()) GTEST_SKIP() << "no model";
+  std::size_t checked = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    Stage st(load(file), without_rule7());
+    mesher::Pump pump = prepared_pump(st);
+    const auto cand = pump.candidates();
+    EXPECT_TRUE(std::is_sorted(cand.begin(), cand.end()));
+    const RegularTriangulation& tri = st.m.triangulation();
+    std::vector<Tet> star;
+    for (const auto& [key, v] : cand) {
+      EXPECT_LE(key, mesher::Pump::angle_key(st.options.theta_deg));
+      tri.incident_cells(v, star);
+      double nearest = 1;
+      for (const Tet& t : star) {
+        if (std::count(t.begin(), t.end(), kInfinite)) continue;
+        const double deg = tet_min_dihedral_deg(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]));
+        nearest = std::min(nearest, std::fabs(mesher::Pump::angle_key(deg) - key));
+      }
+      EXPECT_LT(nearest, 1e-9) << "vertex " << v;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
 TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
   // PUMP searches [0, N(v)^2/9] at the critical weights where the star of v
   // changes; a fine grid over the interval must find nothing better.
@@ -535,15 +604,9 @@ TEST(MesherPump, ChosenWeightIsAsGoodAsABruteForceSearchOfTheInterval) {
   for (const std::string& f : models(WQMESH_SHARED_MODELS, {"20mm-xyz-cube.stl"})) files.push_back(f);
   if (files.empty()) GTEST_SKIP() << "no model";
   for (const std::string& file : files) {
-    MeshOptions o;
-    o.pump = false;  // REFINE without rule 7: plenty of slivers to pump
-    Stage st(load(file), o);
+    Stage st(load(file), without_rule7());
     mesher::Mesher& m = st.m;
-    m.initialize();
-    m.conform();
-    m.refine();
-    mesher::Pump pump = m.make_pump();
-    pump.prepare();
+    mesher::Pump pump = prepared_pump(st);
     const auto cand = pump.candidates();
     if (cand.empty()) continue;
     int tried = 0, improved = 0;

@@ -13,6 +13,7 @@
 
 #include "mesher/pump.h"
 
+#include "geometry.h"
 #include "mesher/extract.h"
 #include "wqmesh/quality.h"
 
@@ -118,7 +119,7 @@ void Pump::prepare() {
         [&](const Tet& t, const std::array<char, 4>&) {
           if (std::count(t.begin(), t.end(), kInfinite)) return;
           const double a = angle_of(t);
-          if (a <= opt_.theta_deg)
+          if (a <= theta_key_)
             for (int v : t) candidates_.push_back({a, v});
         },
         poll);
@@ -172,7 +173,7 @@ void Pump::prepare_from_scan() {
     if (!meter_.poll(1, false)) return;
     if (!inside[i] || std::count(g.cells[i].begin(), g.cells[i].end(), kInfinite)) continue;
     const double a = angle_of(g.cells[i]);
-    if (a <= opt_.theta_deg)
+    if (a <= theta_key_)
       for (int v : g.cells[i]) candidates_.push_back({a, v});
   }
 }
@@ -205,7 +206,7 @@ void Pump::run() {
         const Tet& t = star[i];
         if (std::count(t.begin(), t.end(), kInfinite) || !label(t, refs[i])) continue;
         const double b = angle_of(t);
-        if (b <= opt_.theta_deg)
+        if (b <= theta_key_)
           for (int x : t) next.push_back({b, x});
       }
     }
@@ -215,8 +216,50 @@ void Pump::run() {
   for (std::size_t v = 0; v < verts_.size(); ++v) pumped_vertices_ += tri_.weight(int(v)) > 0;
 }
 
+namespace {
+
+// The pseudo-angle of the angle whose cosine and sine are x and y (y >= 0)
+// times one positive factor: y / (x + y) for x >= 0, else
+// 1 + (-x) / (y - x); in [0, 2], increasing with the angle (0 at 0 degrees,
+// 1 at 90, 2 at 180), and accurate near 0 (no cancellation). x = y = 0 (a
+// flat face) gives 0, as quality.cpp's angle_deg takes it.
+double pseudo_angle(double x, double y) {
+  if (x >= 0) return x + y > 0 ? y / (x + y) : 0;
+  return 1 + (-x) / (y - x);
+}
+
+}  // namespace
+
+double Pump::angle_key(double deg) {
+  // cos and sin by their Taylor series (+, * and /: the same doubles on
+  // every platform), for 0 <= deg <= 180; 30 terms are past double's
+  // precision there.
+  const double x = deg * (geometry::kPi / 180), x2 = x * x;
+  double c = 0, s = 0, tc = 1, ts = x;
+  for (int n = 0; n < 30; ++n) {
+    c += tc;
+    s += ts;
+    tc *= -x2 / ((2 * n + 1) * (2 * n + 2));
+    ts *= -x2 / ((2 * n + 2) * (2 * n + 3));
+  }
+  return pseudo_angle(c, std::max(0.0, s));
+}
+
 double Pump::angle_of(const Tet& t) const {
-  return tet_min_dihedral_deg(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3]));
+  // The dihedral angle at edge ij is the angle between n_k = e x (p_k - p_i)
+  // and n_l = e x (p_l - p_i), e = p_j - p_i (quality.cpp's dihedral_deg):
+  // its cosine and sine are n_k . n_l and |n_k x n_l| over |n_k| |n_l|.
+  static constexpr int kEdges[6][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2},
+                                       {1, 2, 0, 3}, {1, 3, 2, 0}, {2, 3, 0, 1}};
+  const Point3 p[4] = {tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), tri_.point(t[3])};
+  double smallest = 2;
+  for (const auto& e : kEdges) {
+    const Point3 d = geometry::sub(p[e[1]], p[e[0]]);
+    const Point3 nk = geometry::cross(d, geometry::sub(p[e[2]], p[e[0]]));
+    const Point3 nl = geometry::cross(d, geometry::sub(p[e[3]], p[e[0]]));
+    smallest = std::min(smallest, pseudo_angle(geometry::dot(nk, nl), geometry::norm(geometry::cross(nk, nl))));
+  }
+  return smallest;
 }
 
 bool Pump::is_wall(int a, int b, int c) const {
@@ -343,7 +386,7 @@ double Pump::evaluate(int v, double w, const Features& f) {
   std::vector<CellRef> refs;
   tri_.incident_cells(v, star, &refs);
   meter_.poll(star.size() + f.segments.size() + f.subfacets.size());
-  double worst = 180;
+  double worst = 2;  // the key of 180 degrees
   for (std::size_t i = 0; i < star.size(); ++i)
     if (!std::count(star[i].begin(), star[i].end(), kInfinite) && label(star[i], refs[i]))
       worst = std::min(worst, angle_of(star[i]));

@@ -81,8 +81,9 @@ class Pump {
   /// the paper, issue 15, the peak memory).
   void use_cell_labels() { cell_labels_ = true; }
   void run();
-  /// (smallest dihedral, vertex) for the vertices of inside tets with a
-  /// dihedral angle <= theta, worst first, as found by prepare().
+  /// (angle_key of the smallest dihedral, vertex) for the vertices of
+  /// inside tets with a dihedral angle <= theta, worst first (ties by
+  /// vertex), as found by prepare().
   std::vector<std::pair<double, int>> candidates() const;
   /// N(v)^2/9.
   double weight_bound(int v) const;
@@ -98,15 +99,16 @@ class Pump {
   };
   /// The features whose presence a weight change of v must keep.
   Features features_around(int v) const;
-  /// Sets v's weight to w; returns the smallest dihedral angle of the inside
-  /// tets around v, or -1 when w hides v or removes one of `f`.
+  /// Sets v's weight to w; returns the angle_key of the smallest dihedral
+  /// angle of the inside tets around v (2 with none), or -1 when w hides v
+  /// or removes one of `f`.
   double evaluate(int v, double w, const Features& f);
 
   struct Choice {
     double weight = 0, quality = -1, base = -1;
   };
   /// Chooses, and sets, the weight of v in [0, N(v)^2/9] maximising the
-  /// smallest dihedral angle around v, searching the interval at its critical
+  /// smallest dihedral angle around v (its angle_key: quality and base), searching the interval at its critical
   /// weights; keeps the old weight unless the new one is strictly better.
   Choice pump_vertex(int v);
 
@@ -120,6 +122,14 @@ class Pump {
   /// keys: 48 MB on mpi.off, BENCHMARKS.md, session 6 h8) is added for
   /// them; one is added beyond that room, as before.
   static constexpr std::size_t kNewCellRoom = 16;
+  /// Beyond the paper (issue 15: native = wasm): PUMP compares dihedral
+  /// angles by a key made with +, -, *, / and sqrt only, the pseudo-angle
+  /// of the angle's cosine and sine (in [0, 2], increasing with the angle:
+  /// 0 at 0 degrees, 1 at 90, 2 at 180), never by degrees from atan2, whose
+  /// last bit glibc and the wasm libc round differently (BENCHMARKS.md,
+  /// session 7, h6): anchor.off's candidate order, so its mesh, differed.
+  /// The key of an angle of `deg` degrees, 0 <= deg <= 180 (theta's).
+  static double angle_key(double deg);
   /// At most kLabelRounds rounds of label propagation for a new cell.
   static constexpr int kLabelRounds = 64;
   /// At most kCriticalSteps critical weights visited per vertex (a choice:
@@ -130,6 +140,8 @@ class Pump {
   /// prepare()'s labels and candidates from a cell graph (use_scan's, or
   /// a scan of its own).
   void prepare_from_scan();
+  /// The angle_key of t's smallest dihedral angle (its points' +, -, *, /
+  /// and sqrt only).
   double angle_of(const Tet& t) const;
   bool is_wall(int a, int b, int c) const;
   /// The label of cell t, `ref` its CellRef (incident_cells'), found by
@@ -148,6 +160,7 @@ class Pump {
   const Subcomplex& sub_;
   const ProtectingBalls& balls_;
   WorkMeter& meter_;
+  const double theta_key_ = angle_key(opt_.theta_deg);
   std::size_t pumped_vertices_ = 0;
   std::vector<double> nn_;  ///< N(v), measured by prepare()
   CellLabels labels_;
