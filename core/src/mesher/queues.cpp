@@ -191,24 +191,30 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     auto& order = cavity_order_;
     order.clear();
+    // One look-up per key: the subsegment found is kept (the map's nodes
+    // stay where they are until the next insertion).
     for (std::uint64_t k : edges) {
-      if (sub_.subsegments().find(k) == sub_.subsegments().end()) continue;
+      const auto it = sub_.subsegments().find(k);
+      if (it == sub_.subsegments().end()) continue;
       const int a = int(k >> 32);  // the smaller end
       const std::vector<std::uint64_t>& at = sub_.subsegments_at(a);
       const auto pos = std::find(at.begin(), at.end(), k) - at.begin();
       order.push_back({{a, int(pos), 0}, order.size()});
-      cavity_keys_.push_back(k);
+      cavity_segs_.push_back(&it->second);
     }
     std::sort(order.begin(), order.end());
-    for (const auto& o : order) queue(cavity_keys_[o.second], sub_.subsegment(cavity_keys_[o.second]));
-    cavity_keys_.clear();
+    for (const auto& o : order) {
+      const Subsegment& s = *cavity_segs_[o.second];
+      queue(edge_key(s.a, s.b), s);
+    }
+    cavity_segs_.clear();
   }
   if (!tris.empty()) {
     std::sort(tris.begin(), tris.end());
     tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
     std::vector<int>& fs = fs_;
     std::vector<Tri>& pair = pair_;
-    std::vector<int> f1, f2;
+    std::vector<int>&f1 = f1_, &f2 = f2_;
     auto& order = cavity_order_;
     order.clear();
     std::vector<Subfacet>& found = cavity_subfacets_;

@@ -88,7 +88,7 @@ class Queues {
   static constexpr std::size_t kFan = 48;
   std::vector<std::uint64_t> cavity_edges_;  ///< enqueue_from_cavity's buffers
   std::vector<Tri> cavity_tris_;
-  std::vector<std::uint64_t> cavity_keys_;
+  std::vector<const Subsegment*> cavity_segs_;  ///< the subsegments found, by the keys' order
   std::vector<Subfacet> cavity_subfacets_;
   std::vector<std::pair<std::array<int, 3>, std::size_t>> cavity_order_;  ///< (ring walk's order, index)
   std::vector<int> ring_;
@@ -96,7 +96,7 @@ class Queues {
   std::vector<Tet> star_;
   std::vector<CellRef> star_refs_;
   std::vector<Tri> seen_, around_, pair_;
-  std::vector<int> fs_;
+  std::vector<int> fs_, f1_, f2_;
   std::vector<std::pair<int, int>> ring_facets_;      ///< (ring vertex, facet)
   std::vector<std::pair<int, int>> ring_facet_list_;  ///< (facet, ring vertex), sorted
   std::vector<unsigned> ring_mark_;

@@ -179,13 +179,14 @@ class Subcomplex {
   /// Read from a byte per vertex kept beside V (issue 15: the MVertex list is
   /// 32 bytes a vertex, and this test runs on every vertex of every conflict
   /// zone and ring: a cache miss each).
-  bool on_p(int v) const {
-    return static_cast<std::size_t>(v) < on_p_.size() ? on_p_[v] != 0 : v >= 0 && verts_[v].on != On::free;
-  }
-  /// Appends the edges (edge_key) and triangles (sorted) of cells whose
-  /// vertices are all on P (on_p): the only ones that can be subsegments and
-  /// subfacets (issue 15: most edges of a refined mesh are left out before
-  /// any look-up). Unsorted, with repeats.
+  bool on_p(int v) const { return (p_marks(v) & kOnP) != 0; }
+  /// Appends the triangles (sorted) of cells whose vertices are all on P
+  /// (on_p), and the edges (edge_key) whose two ends each end a subsegment
+  /// (now or before: a mark set by add_segment and never cleared): the only
+  /// ones that can be subfacets and subsegments (issue 15: most edges and
+  /// triangles of a refined mesh are left out before any look-up, and the
+  /// edges between vertices inside a facet too, most of those on P).
+  /// Unsorted, with repeats.
   void on_p_features(const std::vector<Tet>& cells, std::vector<std::uint64_t>& edges, std::vector<Tri>& tris) const;
   /// The subfacets of facet f at vertex v.
   void subfacets_at(int f, int v, std::vector<Tri>& out) const;
@@ -237,7 +238,14 @@ class Subcomplex {
   const ProtectingBalls& balls_;
   std::unordered_map<std::uint64_t, Subsegment> segs_;
   std::vector<std::vector<std::uint64_t>> vertex_segs_;
-  std::vector<char> on_p_;  ///< by vertex id: verts_[id].on != On::free (on_p)
+  /// By vertex id: kOnP when verts_[id].on != On::free (on_p), kEndsSegment
+  /// once id ends a subsegment (add_segment; on_p_features).
+  std::vector<char> on_p_;
+  static constexpr char kOnP = 1, kEndsSegment = 2;
+  char p_marks(int v) const {
+    if (static_cast<std::size_t>(v) < on_p_.size()) return on_p_[v];
+    return v >= 0 && verts_[v].on != On::free ? kOnP : 0;  // (not yet inserted: ends no subsegment)
+  }
   /// encroached_by_point's working storage, kept across calls so that a call
   /// allocates nothing once the vectors have grown (issue 15). Not
   /// reentrant: one Subcomplex serves one run on one thread.
@@ -245,7 +253,8 @@ class Subcomplex {
     std::vector<Tet> cells;
     std::vector<std::uint64_t> edges;
     std::vector<Tri> tris;
-    std::vector<int> f0, f1, f2;
+    std::vector<Tri> hits;
+    std::vector<int> f0, f1, f2, fs;
   };
   mutable EncroachScratch scratch_;
   std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
