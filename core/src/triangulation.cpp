@@ -854,19 +854,34 @@ bool RegularTriangulation::visit_labels(const std::function<void(const Tet&, cha
   return true;
 }
 
+namespace {
+// The loop of both visit_labelled: visit(c) for every cell c labelled
+// `label`, in cell_graph's order, polled as visit_labels polls.
+template <class Visit>
+bool for_each_labelled(const Rt& rt, char label, const std::function<bool(std::size_t)>& poll, Visit&& visit) {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  for (auto c = rt.all_cells_begin(); c != rt.all_cells_end(); ++c) {
+    if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
+    if (c->info().value == label) visit(Rt::Cell_handle(c));
+  }
+  return true;
+}
+}  // namespace
+
 bool RegularTriangulation::visit_labelled(char label,
                                           const std::function<void(const Tet&, const std::array<char, 4>&)>& visit,
                                           const std::function<bool(std::size_t)>& poll) const {
-  constexpr std::size_t kEvery = 1024;
-  std::size_t n = 0;
-  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
-    if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
-    if (c->info().value != label) continue;
+  return for_each_labelled(impl_->rt, label, poll, [&](Rt::Cell_handle c) {
     const std::array<char, 4> across{{c->neighbor(0)->info().value, c->neighbor(1)->info().value,
                                       c->neighbor(2)->info().value, c->neighbor(3)->info().value}};
     visit(impl_->tet_of(c), across);
-  }
-  return true;
+  });
+}
+
+bool RegularTriangulation::visit_labelled(char label, const std::function<void(const Tet&)>& visit,
+                                          const std::function<bool(std::size_t)>& poll) const {
+  return for_each_labelled(impl_->rt, label, poll, [&](Rt::Cell_handle c) { visit(impl_->tet_of(c)); });
 }
 
 char RegularTriangulation::label(CellRef ref) const { return impl_->live_cell(ref)->info().value; }

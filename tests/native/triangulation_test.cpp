@@ -449,6 +449,60 @@ TEST(Triangulation, PlanarDelaunayOfASquareWithCentre) {
   EXPECT_EQ(around.size(), 4u);
 }
 
+TEST(Triangulation, PlanarDelaunayIsUnchangedWhileItsSizeIs) {
+  // What the subfacet queue's record relies on (Queues::QueuedSubfacet,
+  // issue 15): an insertion that leaves size() as it was (a point already
+  // there, in projection: off the plane by rounding, or repeated) leaves
+  // every triangle as it was; one that changes the triangles adds a vertex.
+  PlanarDelaunay d;
+  d.set_plane({0.2, -0.3, 1});
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point3> points;
+  int unchanged = 0;
+  for (int i = 0; i < 400; ++i) {
+    Point3 p{{u(rng), u(rng), 0}};
+    if (i > 10 && i % 4 == 0) {
+      p = points[std::size_t(u(rng) * double(points.size()))];
+      if (i % 8 == 0) p[2] += 0.25;  // the same projection, off the plane
+    }
+    points.push_back(p);
+    const std::size_t size = d.size();
+    const std::vector<std::array<int, 3>> before = d.triangles();
+    d.insert(p, i, i - 1);
+    if (d.size() == size) {
+      EXPECT_EQ(d.triangles(), before) << i;
+      ++unchanged;
+    } else {
+      EXPECT_EQ(d.size(), size + 1);
+      if (d.size() > 3) EXPECT_NE(d.triangles(), before) << i;
+    }
+  }
+  EXPECT_GT(unchanged, 80);
+}
+
+TEST(Triangulation, VisitLabelledWithoutTheNeighboursVisitsTheSameCells) {
+  // visit_labelled without the neighbours' labels (rule 7's scan, issue 15)
+  // visits the cells of the label, in the same order, as with them; labels
+  // 1 and 0 on every third cell and the others.
+  RegularTriangulation t;
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 300; ++i) t.insert({u(rng), u(rng), u(rng)}, 0, i - 1);
+  int k = 0;
+  ASSERT_TRUE(t.visit_labels([&](const Tet&, char& label) { label = static_cast<char>(k++ % 3 == 0); }));
+  for (char label : {char(0), char(1)}) {
+    std::vector<Tet> with, without;
+    ASSERT_TRUE(t.visit_labelled(label, [&](const Tet& c, const std::array<char, 4>&) { with.push_back(c); }));
+    ASSERT_TRUE(t.visit_labelled(label, [&](const Tet& c) { without.push_back(c); }));
+    EXPECT_EQ(with, without);
+    EXPECT_GT(with.size(), 100u);
+  }
+  std::size_t polled = 0;
+  EXPECT_FALSE(t.visit_labelled(
+      1, [](const Tet&) {}, [&](std::size_t n) { return (polled += n) < 1024; }));
+}
+
 // A fan: the apex 0 above a finely split base edge. The capped star walk
 // gives up on the apex and not on a base point; edge_triangles finds the one
 // or two triangles on an edge from either end, and none for a non-edge.

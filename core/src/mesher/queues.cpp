@@ -22,7 +22,7 @@ void Queues::push_segment(std::uint64_t k) { queue(k, sub_.subsegment(k)); }
 void Queues::fill(bool tets) {
   for (const auto& [k, s] : sub_.subsegments()) queue(k, s);
   std::sort(segments_.begin(), segments_.end());
-  for (const Subfacet& h : sub_.subfacets()) subfacets_.push_back(h);
+  for (const Subfacet& h : sub_.subfacets()) queue_subfacet(h);
   if (tets) {
     std::vector<Tet> cells;
     std::vector<CellRef> refs;
@@ -30,6 +30,8 @@ void Queues::fill(bool tets) {
     for (std::size_t i = 0; i < cells.size(); ++i) tets_.push_back({cells[i], refs[i]});
   }
 }
+
+void Queues::queue_subfacet(const Subfacet& h) { subfacets_.push_back({h, sub_.facet_triangulation(h.facet).size()}); }
 
 void Queues::enqueue_around(int v) {
   if (meter_.phase() == Phase::initialize) return;
@@ -90,7 +92,7 @@ void Queues::enqueue_around(int v) {
     const auto at = std::lower_bound(seen.begin(), seen.end(), s);
     if (at != seen.end() && *at == s) return;
     seen.insert(at, s);
-    if (sub_.lies_in_facet(f, t)) subfacets_.push_back({f, t});
+    if (sub_.lies_in_facet(f, t)) queue_subfacet({f, t});
   };
   // A vertex of the ring may be the apex of a long fan in a facet (its far
   // edge split finely, as between nearly touching edges): walking its whole
@@ -268,7 +270,7 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
       std::sort(order.begin() + long(i), order.begin() + long(j));
       i = j - 1;
     }
-    for (const auto& o : order) subfacets_.push_back(found[o.second]);
+    for (const auto& o : order) queue_subfacet(found[o.second]);
   }
   queue_finite_cells(cells, refs);
 }
@@ -296,9 +298,12 @@ bool Queues::process(Inserter& inserter, const Rule6& rule6) {
       continue;
     }
     if (!subfacets_.empty()) {
-      const Subfacet h = subfacets_.front();
+      const QueuedSubfacet q = subfacets_.front();
       subfacets_.pop_front();
-      if (!sub_.is_subfacet(h.facet, h.v)) continue;
+      const Subfacet& h = q.h;
+      // Still a subfacet when its facet's planar triangulation is the one
+      // it was queued from (QueuedSubfacet::facet_size), else by the walk.
+      if (q.facet_size != sub_.facet_triangulation(h.facet).size() && !sub_.is_subfacet(h.facet, h.v)) continue;
       if (!refine_phase && rule2_needs_split(h))
         split_subfacet(inserter, h, Rule::rule2_split_missing_subfacet);
       else if (refine_phase && rule5_needs_split(h))
@@ -348,7 +353,8 @@ void Queues::split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule) {
   // SPLITF may reject the circumcenter and split a subsegment instead; then
   // the subfacet is looked at again once that is done.
   const Insertion ins = sub_.splitf(h);
-  if (inserter.insert(ins, rule) >= 0 && ins.has_segment && may_retry(h.v)) subfacets_.push_back(h);
+  // (The insertion may have changed h's facet: its size is not recorded.)
+  if (inserter.insert(ins, rule) >= 0 && ins.has_segment && may_retry(h.v)) subfacets_.push_back({h, kUnknownSize});
   meter_.tick();
 }
 

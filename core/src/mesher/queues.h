@@ -66,8 +66,22 @@ class Queues {
   const RegularTriangulation& tri_;
   const Subcomplex& sub_;
   WorkMeter& meter_;
-  std::deque<std::uint64_t> segments_;        ///< rules 1 and 4
-  std::deque<Subfacet> subfacets_;            ///< rules 2 and 5
+  std::deque<std::uint64_t> segments_;  ///< rules 1 and 4
+  /// A queued subfacet and `facet_size`, the number of vertices of its
+  /// facet's planar triangulation when it was queued as one of that
+  /// triangulation's subfacets (kUnknownSize when not known to be one then).
+  /// Beyond the paper (issue 15): vertices only join a planar triangulation
+  /// (a point already there changes nothing), so while that number is the
+  /// same the triangulation is the same and the triangle is still a
+  /// subfacet, without is_subfacet's walk when it is taken off the queue.
+  struct QueuedSubfacet {
+    Subfacet h;
+    std::size_t facet_size;
+  };
+  static constexpr std::size_t kUnknownSize = static_cast<std::size_t>(-1);
+  /// Queues h, a subfacet of its facet's planar triangulation as it is now.
+  void queue_subfacet(const Subfacet& h);
+  std::deque<QueuedSubfacet> subfacets_;      ///< rules 2 and 5
   std::deque<std::pair<Tet, CellRef>> tets_;  ///< rule 6
   /// How often a subfacet (or a tet, by three of its vertices) was looked at
   /// again after its split was deferred to another feature; bounded by

@@ -95,9 +95,9 @@ bool Refine::rule7_pass() {
   // triangulation, issue 15, the peak memory), else on a cell graph in
   // CGAL's order; the candidates are sorted, so their order is free.
   if (label_cells_in_place(dom_, sub_, tri_, meter_, true)) {
+    // (The cells alone, without their neighbours' labels: issue 15.)
     if (!tri_.visit_labelled(
-            1, [&](const Tet& t, const std::array<char, 4>&) { add(t); },
-            [&](std::size_t n) { return meter_.poll(n, false); }))
+            1, [&](const Tet& t) { add(t); }, [&](std::size_t n) { return meter_.poll(n, false); }))
       return false;
   } else {
     if (meter_.stopped()) return false;
