@@ -678,9 +678,21 @@ bool Improver::remove_edge(int t, int i, int j) {
   // triangulations of the ring's polygon.
   double worst_old = HUGE_VAL;
   for (int x : ts) worst_old = std::min(worst_old, q_[x]);
+  // The phase's time (issue 14; the same meshes): outside fix_violations a
+  // triangulation is taken only when its worst beats worst_old, and the
+  // programme keeps, per sub-polygon, the first cut of the strictly largest
+  // value, so an option whose value is at most worst_old (`prune`) decides
+  // nothing the outcome depends on: it is skipped, and tri() stops after the
+  // first of its two tets when that one is no better. Each entry whose value
+  // beats worst_old stays what it was (by induction on the length), every
+  // other stays at most worst_old; the cuts followed from an accepted
+  // triangulation are those of before.
+  const double prune = fixing_ ? -HUGE_VAL : worst_old;
   auto tri = [&](int x, int y, int z) {
     const Point3 &p = P_[rv[x]], &q = P_[rv[y]], &r = P_[rv[z]];
-    return std::min(min_sine(p, q, r, P_[b]), min_sine(r, q, p, P_[a]));
+    const double first = min_sine(p, q, r, P_[b]);
+    if (first <= prune) return first;
+    return std::min(first, min_sine(r, q, p, P_[a]));
   };
   double best[kMaxRing][kMaxRing];
   int cut[kMaxRing][kMaxRing];
@@ -693,6 +705,8 @@ bool Improver::remove_edge(int t, int i, int j) {
       }
       best[x][z] = -HUGE_VAL;
       for (int y = x + 1; y < z; ++y) {
+        const double sub = std::min(best[x][y], best[y][z]);
+        if (sub <= prune) continue;
         const double v = std::min({best[x][y], best[y][z], tri(x, y, z)});
         if (v > best[x][z]) {
           best[x][z] = v;

@@ -524,6 +524,7 @@ class Improver {
   /// spare their allocations per candidate (the phase's time, issue 14: on
   /// wedge-1 about 25,000 candidates); no result depends on what they held.
   struct BoundaryScratch {
+    std::vector<Point3> tried;  ///< the candidates of the boundary triangle at hand
     std::vector<int> cav, flat;
     std::vector<Tet> fresh;
     std::vector<std::pair<int, Tri3>> fan;
