@@ -433,7 +433,8 @@ export interface MeshStats {
   /** Every subsegment and subfacet is in the mesh. */
   conforming: boolean;
   /** "" when done, "limit" (the vertex limit), "cancelled" (meshSync's onProgress returned false) or
-   * "stalled" (the stuck-step watchdog: one step of the mesher went past its work budget). */
+   * "stalled" (the stuck-step watchdog: one step of the mesher went past its work budget; or the runaway guard:
+   * REFINE's rules 4-5 split the boundary without end, stop_message names the input edge or facet). */
   stopped: '' | 'limit' | 'cancelled' | 'stalled';
   /** Why the run stopped, in words (present only when it stopped): the phase
    * that reached the vertex limit, or the two input edges whose small angle

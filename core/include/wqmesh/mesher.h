@@ -174,11 +174,13 @@ struct MeshResult {
   /// "" when done, "limit" (max_vertices reached), "cancelled" (the progress
   /// callback returned false; the run then returns at once and holds no mesh:
   /// its partial mesh is not extracted) or "stalled" (a step went past
-  /// MeshOptions::stall_work units of work: the watchdog).
+  /// MeshOptions::stall_work units of work: the watchdog; or REFINE's rules
+  /// 4-5 split the boundary without end: the runaway guard, beyond the paper).
   std::string stopped;
   /// Why the run stopped, in words, when it did (for "limit": where the vertex
   /// budget went, or the input feature that needs more vertices than it; for
-  /// "stalled": the phase, the step and the work it did).
+  /// "stalled": the phase, the step and the work it did, or for a runaway the
+  /// rules, their counts and the input edge or facet of the last split).
   std::string stop_message;
   /// Every subsegment and subfacet is in the final triangulation.
   bool conforming = false;

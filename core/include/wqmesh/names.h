@@ -20,7 +20,8 @@ namespace wqmesh {
 /// (the name is the empty string); `limit`: MeshOptions::max_vertices was
 /// reached; `cancelled`: the progress callback returned false; `stalled`: one
 /// step went past MeshOptions::stall_work units of work (the watchdog, beyond
-/// the paper).
+/// the paper), or REFINE's rules 4-5 split the boundary without end (the
+/// runaway guard, beyond the paper).
 enum class StopReason { done, limit, cancelled, stalled };
 
 /// The phases of a run in the order they come (section 4.3: INITIALIZE,

@@ -19,22 +19,15 @@ void Conform::run() {
   // marks the new vertex's neighbours (Rule3State::touched; see rule3_pass).
   Rule3State& state = state_;
   state = {};
-  const auto observer = ins_.observer;
   // The caller's observer is back when this scope ends, however it ends.
-  struct Restore {
-    Inserter& ins;
-    const std::function<void(const Insertion&, int, int)>& observer;
-    ~Restore() { ins.observer = observer; }
-  } restore{ins_, observer};
   std::vector<int> ring;
-  ins_.observer = [&](const Insertion& ins, int rule, int id) {
-    if (observer) observer(ins, rule, id);
+  const ScopedObserver scope(ins_, [&](const Insertion&, int, int id) {
     if (id < 0) return;
     if (state.touched.size() < std::size_t(tri_.number_of_vertices()))
       state.touched.resize(tri_.number_of_vertices(), 0);
     tri_.adjacent_vertices(id, ring);
     for (int x : ring) state.touched[x] = std::max(state.touched[x], id);
-  };
+  });
   int passes = 0;
   while (!meter_.stopped() && passes < Caps::kRule3Passes && rule3_pass()) ++passes;
   if (passes == Caps::kRule3Passes) meter_.cap_reached();

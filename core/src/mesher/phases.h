@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -19,6 +21,28 @@
 #include "wqmesh/mesher.h"
 
 namespace wqmesh::mesher {
+
+/// Sets `inserter`'s observer to `observer`, which also calls the one it
+/// replaces first, for the scope's life; the replaced one is back when the
+/// scope ends, however it ends (CONFORM's rule-3 marks, REFINE's runaway
+/// guard).
+class ScopedObserver {
+ public:
+  using Observer = std::function<void(const Insertion&, int rule, int id)>;
+  ScopedObserver(Inserter& inserter, Observer observer) : ins_(inserter), saved_(inserter.observer) {
+    ins_.observer = [saved = saved_, observer = std::move(observer)](const Insertion& ins, int rule, int id) {
+      if (saved) saved(ins, rule, id);
+      observer(ins, rule, id);
+    };
+  }
+  ~ScopedObserver() { ins_.observer = saved_; }
+  ScopedObserver(const ScopedObserver&) = delete;
+  ScopedObserver& operator=(const ScopedObserver&) = delete;
+
+ private:
+  Inserter& ins_;
+  Observer saved_;
+};
 
 /// INITIALIZE (sections 4.1, 4.3; initialize.cpp): the vertices of P, the
 /// vertex-ball points on its edges, the subsegments, the sectors with their
@@ -136,6 +160,9 @@ class Refine {
   bool rule7_pass();
   /// The queued rules 4-6 (Queues::process with rule 6); false if stopped.
   bool process_queues();
+  /// The input feature an insertion lies on, in words (the runaway guard's
+  /// message): "input edge E (vertices a-b)", "input facet F", ...
+  std::string input_feature(const Insertion& ins) const;
 
   const Domain& dom_;
   const MeshOptions& opt_;

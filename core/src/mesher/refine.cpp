@@ -3,6 +3,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <unordered_set>
 
 #include "mesher/extract.h"
@@ -20,7 +22,30 @@ double min_dihedral_upto(const RegularTriangulation& tri, const Tet& t, double b
 }
 }  // namespace
 
+std::string Refine::input_feature(const Insertion& ins) const {
+  char text[160];
+  if (ins.on == On::edge && ins.element >= dom_.input_edges) {
+    std::snprintf(text, sizeof text, "an edge of the bounding box");
+  } else if (ins.on == On::edge) {
+    const auto& e = dom_.p.edges[ins.element];
+    std::snprintf(text, sizeof text, "input edge %d (vertices %d-%d)", ins.element, e.a, e.b);
+  } else if (ins.on == On::facet && dom_.is_box_facet(ins.element)) {
+    std::snprintf(text, sizeof text, "a facet of the bounding box");
+  } else if (ins.on == On::facet) {
+    std::snprintf(text, sizeof text, "input facet %d%s", ins.element, ins.sector >= 0 ? " (a shield arc)" : "");
+  } else {
+    std::snprintf(text, sizeof text, "a point off the input's elements");
+  }
+  return text;
+}
+
 void Refine::run() {
+  // Beyond the paper: the runaway guard (WorkMeter::refine_insertion) sees
+  // every insertion of REFINE; it names the input feature of the last one.
+  const ScopedObserver scope(ins_, [this](const Insertion& ins, int rule, int id) {
+    if (id < 0) return;
+    meter_.refine_insertion(static_cast<Rule>(rule), verts_.size(), [&] { return input_feature(ins); });
+  });
   queues_.fill(true);
   if (!process_queues()) return;
   if (!opt_.pump) return;

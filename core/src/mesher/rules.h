@@ -43,6 +43,20 @@ struct Caps {
   /// Times a subfacet (or a tet, by three of its vertices) is looked at again
   /// after its split was deferred to another feature.
   static constexpr int kRetries = 16;
+  /// REFINE's insertions by rules 4 and 5 in a row, with no rule-6 or rule-7
+  /// insertion between them: at most kBoundaryRunFactor times the vertex
+  /// count of V before the first of them, plus kBoundaryRunSlack; past it the
+  /// run stops as a runaway (WorkMeter::refine_insertion). In a terminating
+  /// run such a run of splits answers the points inserted before it: the
+  /// longest on the 16 meshable models of examples/models and the shared
+  /// models (BENCHMARKS.md, session 9, h4) was wedge-1's, 2,013 points from 240 vertices (8.4 times; part 333 from
+  /// 4,400, anchor 71 from 27,639), 12 times below its cap. Where a pair of
+  /// elements at an angle below 90 degrees is left unprotected (a sharp edge
+  /// missed), their subfacets encroach each other's and rule 5 splits them
+  /// without end: section 5.1 assumes every such pair protected (Lemma 5.1
+  /// (ii)); the cap turns that into a stop with a message.
+  static constexpr int kBoundaryRunFactor = 16;
+  static constexpr int kBoundaryRunSlack = 20000;
 };
 
 }  // namespace wqmesh::mesher

@@ -34,6 +34,32 @@ bool WorkMeter::poll(std::uint64_t units, bool in_step) {
   return stop_reason_.empty();
 }
 
+bool WorkMeter::refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where) {
+  if (rule != Rule::rule4_split_encroached_subsegment && rule != Rule::rule5_split_encroached_subfacet) {
+    boundary_run_ = 0;
+    return stop_reason_.empty();
+  }
+  if (boundary_run_++ == 0) {
+    boundary_run_start_ = vertices - 1;
+    boundary_run_rule5_ = 0;
+  }
+  if (rule == Rule::rule5_split_encroached_subfacet) ++boundary_run_rule5_;
+  const std::size_t cap = std::size_t(Caps::kBoundaryRunFactor) * boundary_run_start_ + Caps::kBoundaryRunSlack;
+  if (boundary_run_ > cap && stop_reason_.empty()) {
+    cap_reached();
+    stop_reason_ = "stalled";
+    stop_message_ = "a runaway in refine: rules 4 and 5 inserted " + std::to_string(boundary_run_) +
+                    " points in a row (rule 5: " + std::to_string(boundary_run_rule5_) +
+                    ", rule 4: " + std::to_string(boundary_run_ - boundary_run_rule5_) +
+                    ") without a rule-6 or rule-7 insertion, more than " + std::to_string(Caps::kBoundaryRunFactor) +
+                    " times the " + std::to_string(boundary_run_start_) + " vertices before them plus " +
+                    std::to_string(Caps::kBoundaryRunSlack) + "; the last on " + where() +
+                    " (an angle below 90 degrees between two input elements left without protecting balls "
+                    "splits their subfacets without end): the runaway guard ended the run";
+  }
+  return stop_reason_.empty();
+}
+
 RegularTriangulation::CellGraph WorkMeter::scan_cell_graph(const RegularTriangulation& tri) {
   return tri.cell_graph([this](std::size_t cells) { return poll(cells, false); });
 }

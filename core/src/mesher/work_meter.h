@@ -7,9 +7,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "mesher/rules.h"
 #include "mesher/subcomplex.h"
 #include "triangulation.h"
 #include "wqmesh/mesher.h"
@@ -83,6 +85,16 @@ class WorkMeter {
   void cap_reached() { ++caps_reached_; }
   std::size_t caps_reached() const { return caps_reached_; }
 
+  /// Beyond the paper: the runaway guard of REFINE. Takes every insertion of
+  /// REFINE (its rule; `vertices`: V's size after it). Rules 4 and 5 extend
+  /// the current run of boundary insertions, rules 6 and 7 end it. A run
+  /// longer than Caps::kBoundaryRunFactor times V's size before its first
+  /// insertion, plus Caps::kBoundaryRunSlack, stops the run with stopped =
+  /// "stalled", counts a cap in caps_reached, and sets a stop message naming
+  /// the rules, the counts and `where()` (the last insertion's input feature,
+  /// called only then). Returns false once the run must stop.
+  bool refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where);
+
  private:
   void report_progress();
 
@@ -92,6 +104,9 @@ class WorkMeter {
   Phase phase_ = Phase::initialize;
   std::size_t steps_ = 0, caps_reached_ = 0;
   std::uint64_t work_ = 0, next_poll_ = kPollWork, step_work_ = 0;
+  /// The current run of rule 4-5 insertions in REFINE (refine_insertion):
+  /// its length, V's size before it, and its rule-5 share.
+  std::size_t boundary_run_ = 0, boundary_run_start_ = 0, boundary_run_rule5_ = 0;
   std::string stop_reason_, stop_message_;
 };
 
