@@ -113,6 +113,7 @@ TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
     EXPECT_THROW(m.subcomplex(), std::logic_error);
     EXPECT_THROW(m.extract_mesh(), std::logic_error);
     EXPECT_TRUE(m.vertices().empty());
+    EXPECT_EQ(m.vertices().capacity(), 0u);  // freed, not only emptied
     EXPECT_EQ(m.balls().all().size(), expected.protecting_balls.size());
     ASSERT_TRUE(mesher::classify_tets(r, balls, o));
 
@@ -133,6 +134,30 @@ TEST(Memory, ReleasedMesherGivesTheWholeExtractionsResult) {
     EXPECT_EQ(r.violations, expected.violations);
     EXPECT_EQ(r.orthoradius_skinny, expected.orthoradius_skinny);
   }
+}
+
+// classify_tets on a changed mesh (the improvement phase's final classes)
+// frees the old measures and classes before making new ones: the new arrays
+// are exactly the new mesh's size, not the old arrays' blocks kept (issue 15,
+// the peak memory).
+TEST(Memory, ClassesOfAChangedMeshReplaceTheOldArrays) {
+  const LoadedModel s("spike.off");
+  mesher::Mesher m(s.dom, s.o, s.none);
+  refine(m);
+  m.count_qmesh_slivers();
+  m.pump();
+  MeshResult r = m.extract();
+  const mesher::ProtectingBalls balls = m.balls();
+  m.release();
+  ASSERT_GT(r.mesh.tets.size(), 8u);
+  ASSERT_EQ(r.orthoradius_edge.size(), r.mesh.tets.size());
+  r.mesh.tets.resize(r.mesh.tets.size() / 2);  // fewer tets, as the improvement phase may leave
+  ASSERT_TRUE(mesher::classify_tets(r, balls, s.o));
+  EXPECT_EQ(r.quality.size(), r.mesh.tets.size());
+  EXPECT_EQ(r.orthoradius_edge.size(), r.mesh.tets.size());
+  EXPECT_EQ(r.orthoradius_edge.capacity(), r.mesh.tets.size());
+  EXPECT_EQ(r.tet_class.size(), r.mesh.tets.size());
+  EXPECT_EQ(r.tet_class.capacity(), r.mesh.tets.size());
 }
 
 // Subcomplex::freeze (Mesher::freeze_subcomplex, as mesh_polyhedron calls it

@@ -128,12 +128,14 @@ bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOption
                    const std::function<bool()>& keep_going) {
   const TetMesh& mesh = r.mesh;
   r.slivers = r.skinny = r.near_small_angle = r.violations = r.orthoradius_skinny = 0;
-  r.tet_class.clear();
-  r.orthoradius_edge.clear();
-  // The old measures go first, so that they and the new ones are never held
-  // together (issue 15, the peak memory), and the memory freed before (the
-  // improvement phase's arrays) goes back to the system (trim_heap), so that
-  // the new measures do not come on top of it in the resident memory.
+  // The old measures and classes go first (freed: clear() would keep their
+  // blocks, sized for the mesh before the improvement phase), so that they
+  // and the new ones are never held together (issue 15, the peak memory),
+  // and the memory freed before (the improvement phase's arrays) goes back
+  // to the system (trim_heap), so that the new measures do not come on top
+  // of it in the resident memory.
+  std::vector<TetClass>().swap(r.tet_class);
+  std::vector<double>().swap(r.orthoradius_edge);
   std::vector<TetQuality>().swap(r.quality);
   trim_heap();
   r.quality = mesh_quality(mesh, keep_going, false);
