@@ -659,8 +659,10 @@ bool Improver::flip23(int t, int k) {
   if (e < 0) return false;
   // (x, y, z, d) positive: the reverse of t's outward face opposite d.
   const Tri f = reversed(outward_face(tets_[t], k));
-  const std::vector<Tet> fresh = {{{f[0], f[1], e, d}}, {{f[1], f[2], e, d}}, {{f[2], f[0], e, d}}};
-  const std::vector<int> old = {t, n};
+  std::vector<Tet>& fresh = op_fresh_;
+  fresh.assign({{{f[0], f[1], e, d}}, {{f[1], f[2], e, d}}, {{f[2], f[0], e, d}}});
+  std::vector<int>& old = op_old_;
+  old.assign({t, n});
   double w;
   if (!accept(old, fresh, w) || !replace(old, fresh)) return false;
   ++st_.flips23;
@@ -669,7 +671,7 @@ bool Improver::flip23(int t, int k) {
 
 bool Improver::remove_edge(int t, int i, int j) {
   const int a = tets_[t][i], b = tets_[t][j];
-  std::vector<int> ts, rv;
+  std::vector<int>&ts = op_old_, &rv = ring_verts_;
   if (!ring(t, a, b, ts, rv)) return false;
   const int m = int(rv.size());
   // Triangles (r_i, r_j, r_k), i < j < k, become the tets (r_i, r_j, r_k, b)
@@ -773,8 +775,10 @@ bool Improver::flip22(int t, int i, int j) {
   // The boundary cycle a -> e -> b -> d: new triangles (a, e, d), (e, b, d);
   // the tets with apex c inside: (x, z, y, c) for each outward (x, y, z).
   const Tri n1{{a, e, d}}, n2{{e, b, d}};
-  const std::vector<Tet> fresh = {{{a, d, e, c}}, {{e, d, b, c}}};
-  const std::vector<int> old = {t, t2};
+  std::vector<Tet>& fresh = op_fresh_;
+  fresh.assign({{{a, d, e, c}}, {{e, d, b, c}}});
+  std::vector<int>& old = op_old_;
+  old.assign({t, t2});
   double w;
   if (!accept(old, fresh, w) || !replace(old, fresh, {{b1, n1}, {b2, n2}})) return false;
   ++st_.flips22;
@@ -1052,7 +1056,14 @@ bool Improver::insert(int t) {
       const double placed = ascend_new_point(p_id, fresh, worst_min_sine(fresh));
       vtet_.push_back(-1);
       double w;
-      if (placed > best && accept(cav, fresh, w) && w > best) {
+      // placed is what accept() computes as the new worst, bit for bit
+      // (ascend_new_point): outside fix_violations a candidate that does not
+      // beat the cavity's worst is refused there; spare it (as
+      // insert_boundary does; the same meshes).
+      double worst_old = HUGE_VAL;
+      for (int c : cav) worst_old = std::min(worst_old, q_[c]);
+      const bool hopeless = !fixing_ && !(placed > worst_old);
+      if (placed > best && !hopeless && accept(cav, fresh, w) && w > best) {
         best = w;
         best_old = cav;
         best_fresh = fresh;

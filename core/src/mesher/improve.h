@@ -408,6 +408,10 @@ class Improver {
   /// insert()'s candidates, cavity [0] and best cavity [1], their new tets,
   /// and the faces known to see the point; contraction()'s star of u.
   std::vector<Point3> insert_candidates_;
+  /// The old tets and new ones of flip23() and flip22(), and remove_edge()'s
+  /// ring (its tets in op_old_; no result depends on what they held before).
+  std::vector<int> op_old_, ring_verts_;
+  std::vector<Tet> op_fresh_;
   std::vector<int> insert_old_[2];
   std::vector<Tet> insert_fresh_[2];
   std::vector<char> insert_known_;
@@ -675,6 +679,7 @@ class Improver {
   /// parent, -1 at the root): grows the tree beyond its other edges, sets
   /// next[] and value, returns value.
   double grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b);
+  std::vector<Sandwich> sandwich_faces_;  ///< remove_faces()'s (kept to spare its allocation)
   /// t's vertex other than x, y and z (-1 if none).
   int other_vertex(int t, int x, int y, int z) const;
 

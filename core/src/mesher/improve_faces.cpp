@@ -76,7 +76,8 @@ bool Improver::remove_faces(int t, int k) {
   if (b < 0) return false;
   std::array<int, 3> key = u0;
   std::sort(key.begin(), key.end());
-  std::vector<Sandwich> faces = {{u0, key, t, n, {{-1, -1, -1}}, 0}};
+  std::vector<Sandwich>& faces = sandwich_faces_;
+  faces.assign(1, {u0, key, t, n, {{-1, -1, -1}}, 0});
   grow_sandwich(faces, 0, -1, a, b);
   // The chosen faces (a tree from the root) and the polygon's boundary
   // edges, each giving the new tet (p, q, b, a).
