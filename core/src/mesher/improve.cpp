@@ -481,6 +481,7 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
 }
 
 bool Improver::beats(double worst_new, double worst_old) const {
+  if (polishing_ && polish_dihedral_) return worst_new >= polish_sine_floor_;  // accept() judges the angle
   return worst_new > worst_old || (fixing_ && worst_new >= fix_min_ && worst_new > fix_floor_);
 }
 
@@ -515,6 +516,7 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   }
   for (const Tet& T : fresh)
     if (!admissible(T, size_cap)) return false;
+  if (polishing_ && polish_dihedral_ && !polish_lowers_cosine(old, fresh)) return false;  // improve_polish.cpp
   classes_before(old, accept_before_);
   const int change = classes_change(old, accept_before_, fresh);
   return fixing_ ? change < 0 : change <= 0;
@@ -944,9 +946,15 @@ bool Improver::smooth(int v) {
     return classes_change(S, before, tets) <= 0;
   };
   const Point3 from = P_[v];
-  double w = ascend(v, tets, worst_old, lmin, valid, axes & 7);
-  if (axes & kPlaneSlide) w = ascend_in_plane(v, tets, w, lmin, valid);  // improve_boundary.cpp
-  if (!(w > worst_old)) return false;
+  if (polishing_ && polish_dihedral_) {
+    // polish()'s smoothing: on the star's smallest dihedral angle
+    // (improve_dihedral.cpp), under the same guards (valid()).
+    if (!ascend_dihedral(v, tets, lmin, valid, axes)) return false;
+  } else {
+    double w = ascend(v, tets, worst_old, lmin, valid, axes & 7);
+    if (axes & kPlaneSlide) w = ascend_in_plane(v, tets, w, lmin, valid);  // improve_boundary.cpp
+    if (!(w > worst_old)) return false;
+  }
   forget(S);
   for (int t : S) {
     const Tet& T = tets_[t];

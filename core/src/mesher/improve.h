@@ -115,6 +115,13 @@ constexpr int kPolishRounds = 30;
 constexpr int kPolishStalls = 2;
 constexpr double kPolishRiseDeg = 0.01;
 constexpr double kPolishFloorDeg = 5;
+/// ascend_dihedral(): steps per smoothing, and the cosines counted as
+/// nearly the largest (within kDihedralActive of it, in cosine).
+constexpr int kDihedralSteps = 8;
+constexpr double kDihedralActive = 1e-2;
+/// The polish's ties: a cosine must be below the one it beats by this much
+/// (1e-12, about 1e-10 degrees; why: improve_polish.cpp).
+constexpr double kPolishTieCos = 1e-12;
 /// The polish is off by default (MeshOptions::polish = false) because of
 /// issue 14's time goal (the phase under REFINE + PUMP's time): on slit,
 /// edge_facet, extrusion and slit-1 it takes the phase to 3 to 8 times
@@ -551,6 +558,11 @@ class Improver {
   /// step's point snapped to one that on_planes_as_before() accepts.
   double ascend_in_plane(int v, const std::vector<Tet>& tets, double current, double lmin,
                          const std::function<bool()>& valid);
+  /// The point x = base + t plane_direction(v) nearest to base + s times its
+  /// unit vector with t a short dyadic number, if on_planes_as_before(v, x)
+  /// accepts it (and x is not P_[v]); false, x unspecified, otherwise. base
+  /// differs from P_[v] only along slide_axes(v) (or is P_[v]).
+  bool snap_in_plane(int v, const Point3& base, double s, Point3& x) const;
   bool closed_ = false;  ///< no face without a neighbour or a boundary triangle
 
   // ---- Vertex removal by edge contraction (improve_contract.cpp; beyond
@@ -699,6 +711,16 @@ class Improver {
   // left, and the class guard keeps the violations from growing. A round
   // without a change ends it, as do kPolishStalls rounds in a row without a
   // rise of D by kPolishRiseDeg.
+  // Two stages of such rounds (session 9): the first judges every change
+  // by min-sine as above; when it stops, the second (polish_dihedral_, every
+  // retry stamp forgotten) judges them by the smallest dihedral angle: a
+  // change must lower the largest cosine of the dihedral angles of the tets
+  // it replaces (polish_lowers_cosine(); smoothing by ascend_dihedral()),
+  // and no new tet's min-sine may fall below the mesh's worst when polish()
+  // began (polish_sine_floor_: the phase's contract, the worst tet never
+  // worse by min-sine), with the same floor, tet bound and guards. The
+  // first stage is the polish of before bit for bit, and the second only
+  // raises D, so D is never below what the first stage alone reaches.
   // Every decision compares cosines of dihedral angles made with +, -, *, /
   // and sqrt only (largest_cosine()), no libm call: the native and the wasm
   // builds give the same mesh.
@@ -706,6 +728,10 @@ class Improver {
   /// The rounds, every one the stopping rules allow; returns the changes
   /// made (run() calls it after the passes when set_polish(true)).
   std::size_t polish();
+  /// smooth(v) as a round of polish() makes it (for the tests): under the
+  /// floors of a round that begins now, on the smallest dihedral angle of
+  /// v's star (ascend_dihedral); true when v moved.
+  bool smooth_in_polish(int v);
   /// Whether run() polishes (MeshOptions::polish; off by default).
   void set_polish(bool on) { polish_on_ = on; }
   /// The largest cosine of T's six dihedral angles (the cosine of its
@@ -730,6 +756,37 @@ class Improver {
   /// admits the tet at once).
   double polish_floor_cos_ = 1, polish_floor_sine_ = 0;
   std::size_t polish_cap_ = 0;  ///< the live tets when polish() began
+  /// The rounds of one stage of polish(); returns the changes made.
+  std::size_t polish_rounds();
+  /// In polish()'s second stage: smoothing by ascend_dihedral(), and the
+  /// other changes judged by the smallest dihedral angle (beats() asks only
+  /// for the min-sine floor polish_sine_floor_, accept() for
+  /// polish_lowers_cosine()).
+  bool polish_dihedral_ = false;
+  /// Whether the largest cosine of the tets `fresh` is below that of the
+  /// live tets `old` (by kPolishTieCos: a tie is refused).
+  bool polish_lowers_cosine(const std::vector<int>& old, const std::vector<Tet>& fresh) const;
+  /// Sets the floors of a round whose mesh has the largest cosine C
+  /// (polish_floor_cos_, polish_floor_sine_).
+  void set_polish_floor(double C);
+  /// The mesh's worst min-sine when polish() began: no tet the polish's
+  /// smoothing makes is worse by min-sine (the phase's contract).
+  double polish_sine_floor_ = 0;
+  std::vector<Point3> dihedral_gradients_;  ///< ascend_dihedral()'s (kept to spare allocations)
+  /// polish()'s smoothing (improve_dihedral.cpp; smooth() calls it while
+  /// polishing_, with its valid() and the star's tets `tets`, each holding
+  /// v): up to kDihedralSteps steps of a nonsmooth descent of the largest
+  /// cosine of the dihedral angles of `tets` over P_[v], within
+  /// movable_axes(v) (`axes`; the in-plane slide through snap_in_plane()).
+  /// Each step's direction is minus the point of least norm of the convex
+  /// hull of the gradients (in the movable coordinates) of the cosines within
+  /// kDihedralActive of the largest; its length the longest of a halving line
+  /// search from lmin / 5 that lowers the largest cosine by more than
+  /// kPolishTieCos, keeps every
+  /// tet's min-sine at least polish_sine_floor_ and passes valid(). Leaves
+  /// P_[v] at the best point; true when it moved. Only +, -, *, / and sqrt
+  /// decide (native = wasm, as the rest of the polish).
+  bool ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin, const std::function<bool()>& valid, int axes);
 };
 
 /// The phase on a finished, conforming run's extracted mesh r: records the

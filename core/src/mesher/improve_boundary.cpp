@@ -241,6 +241,24 @@ bool Improver::on_planes_as_before(int v, const Point3& p) const {
   return true;
 }
 
+bool Improver::snap_in_plane(int v, const Point3& base, double s, Point3& x) const {
+  const Point3 d = plane_direction(v);
+  const double dn = std::sqrt(geometry::dot(d, d));
+  if (!(dn > 0)) return false;
+  // The point base + t d nearest to base + s d / |d| whose coordinates are
+  // exact: t a multiple of a power of two with few bits, so that t d and the
+  // sums are exact where they can be; on_planes_as_before() decides.
+  for (int k = -40; k <= -16; k += 4) {
+    const double g = std::ldexp(1.0, k), t = std::nearbyint(s / dn / g) * g;
+    if (t == 0) continue;
+    x = base;
+    for (int c = 0; c < 3; ++c)
+      if (d[c] != 0) x[c] += t * d[c];
+    if (x != P_[v] && on_planes_as_before(v, x)) return true;
+  }
+  return false;
+}
+
 double Improver::ascend_in_plane(int v, const std::vector<Tet>& tets, double current, double lmin,
                                  const std::function<bool()>& valid) {
   const Point3 d = plane_direction(v);
@@ -256,20 +274,6 @@ double Improver::ascend_in_plane(int v, const std::vector<Tet>& tets, double cur
     }
     return w;
   };
-  // The point t d from P_[v] nearest to P_[v] + s d / |d| whose coordinates
-  // are exact: t a multiple of a power of two with few bits, so that t d and
-  // the sums are exact where they can be; on_planes_as_before() decides.
-  auto snapped = [&](double s, Point3& x) {
-    for (int k = -40; k <= -16; k += 4) {
-      const double g = std::ldexp(1.0, k), t = std::nearbyint(s / dn / g) * g;
-      if (t == 0) continue;
-      x = P_[v];
-      for (int c = 0; c < 3; ++c)
-        if (d[c] != 0) x[c] += t * d[c];
-      if (x != P_[v] && on_planes_as_before(v, x)) return true;
-    }
-    return false;
-  };
   // As ascend(): up to kSmoothSteps steps, each the longest of a halving
   // line search from lmin / 5 (either way along d) that raises the worst and
   // passes valid().
@@ -281,7 +285,7 @@ double Improver::ascend_in_plane(int v, const std::vector<Tet>& tets, double cur
         // 1e-12 or so; the exact check is the costly part).
         if (!(worst_at(geometry::add(P_[v], geometry::mul(d, s / dn))) > current)) continue;
         Point3 x;
-        if (!snapped(s, x)) continue;
+        if (!snap_in_plane(v, P_[v], s, x)) continue;
         const double w = worst_at(x);
         if (!(w > current) || !move_if_valid(v, x, valid)) continue;
         current = w;

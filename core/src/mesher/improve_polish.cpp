@@ -36,18 +36,17 @@ static_assert(kPolishBandDeg == 8 && kPolishFloorDeg == 5, "kCosBand, kSinBand a
 /// the rounding of min_sine() and of the cut never drops a tet the cosine
 /// test would take.
 constexpr double kPrefilterMargin = 1e-9;
-/// A new tet must beat the floor's cosine by this much, so that a tie at the
-/// floor (a new tet whose smallest angle is the floor's exactly, e.g. after
-/// an in-plane slide of a boundary vertex, which leaves the dihedral angle at
-/// a tet's edge in that plane as it was) is refused whatever the rounding.
-/// Without it, the rounding decided such ties, differently in each build: on
-/// slit.off the polish gave 29.00 degrees with glibc's atan2, 27.20 with
-/// musl's (wasm), 26.14 with these cosines; with it, 28.19 with any margin
-/// from 1e-15 to 1e-10. 1e-12 in cosine is about 1e-10 degrees. A min-sine
-/// above sin(floor) (1 + kPrefilterMargin) puts the angle more than 1e-11
-/// above the floor in cosine (the floor is at least 5 degrees), so the quick
-/// test of polish_admits() agrees.
-constexpr double kTieCos = 1e-12;
+// kPolishTieCos (improve.h): a new tet must beat the floor's cosine by this much, so that a tie at the
+// floor (a new tet whose smallest angle is the floor's exactly, e.g. after
+// an in-plane slide of a boundary vertex, which leaves the dihedral angle at
+// a tet's edge in that plane as it was) is refused whatever the rounding.
+// Without it, the rounding decided such ties, differently in each build: on
+// slit.off the polish gave 29.00 degrees with glibc's atan2, 27.20 with
+// musl's (wasm), 26.14 with these cosines; with it, 28.19 with any margin
+// from 1e-15 to 1e-10. 1e-12 in cosine is about 1e-10 degrees. A min-sine
+// above sin(floor) (1 + kPrefilterMargin) puts the angle more than 1e-11
+// above the floor in cosine (the floor is at least 5 degrees), so the quick
+// test of polish_admits() agrees.
 /// The six edges ij of a tet, each with the two other vertices k and l.
 constexpr int kEdgeAndOthers[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
                                       {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
@@ -77,7 +76,7 @@ bool Improver::polish_admits(const Tet& T) const {
   // A min-sine above sin(floor) puts every dihedral angle in (floor, 180 -
   // floor): no cosine above the floor's (the margin covers the roundings).
   if (min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) > polish_floor_sine_ * (1 + kPrefilterMargin)) return true;
-  return largest_cosine(T) < polish_floor_cos_ - kTieCos;
+  return largest_cosine(T) < polish_floor_cos_ - kPolishTieCos;
 }
 
 bool Improver::polish_room(std::size_t old_tets, std::size_t new_tets) const {
@@ -99,8 +98,49 @@ double Improver::largest_mesh_cosine() const {
   return C;
 }
 
+bool Improver::polish_lowers_cosine(const std::vector<int>& old, const std::vector<Tet>& fresh) const {
+  double c_old = -1, c_new = -1;
+  for (int t : old) c_old = std::max(c_old, largest_cosine(tets_[t]));
+  for (const Tet& T : fresh) {
+    c_new = std::max(c_new, largest_cosine(T));
+    if (!(c_new < c_old - kPolishTieCos)) return false;
+  }
+  return true;
+}
+
+void Improver::set_polish_floor(double C) {
+  // The floor max(D, kPolishFloorDeg): a cosine below min(C, cos 5).
+  polish_floor_cos_ = std::min(C, kCosFloorMin);
+  polish_floor_sine_ = std::sqrt(std::max(0.0, 1 - polish_floor_cos_ * polish_floor_cos_));
+}
+
+bool Improver::smooth_in_polish(int v) {
+  polish_cap_ = tets_.size() - free_slots_.size();
+  polish_sine_floor_ = worst();
+  set_polish_floor(largest_mesh_cosine());
+  polishing_ = polish_dihedral_ = true;
+  const bool moved = smooth(v);
+  polishing_ = polish_dihedral_ = false;
+  return moved;
+}
+
 std::size_t Improver::polish() {
   polish_cap_ = tets_.size() - free_slots_.size();
+  polish_sine_floor_ = worst();
+  polish_dihedral_ = false;
+  std::size_t n = polish_rounds();
+  // The second stage: what failed by the min-sine rule may pass by the
+  // angle's, so every stamp is forgotten.
+  std::fill(tried_.begin(), tried_.end(), -1);
+  std::fill(smoothed_.begin(), smoothed_.end(), -1);
+  std::fill(contract_tried_.begin(), contract_tried_.end(), -1);
+  polish_dihedral_ = true;
+  n += polish_rounds();
+  polish_dihedral_ = false;
+  return n;
+}
+
+std::size_t Improver::polish_rounds() {
   std::size_t n = 0;
   double last = HUGE_VAL;
   int stalls = 0;
@@ -131,10 +171,8 @@ std::size_t Improver::polish() {
     std::sort(list.begin(), list.end());
     if (list.size() > std::size_t(kPolishTets)) list.resize(std::size_t(kPolishTets));
     const std::size_t before = n;
-    // The floor max(D, kPolishFloorDeg): a cosine below min(C, cos 5).
     polishing_ = true;
-    polish_floor_cos_ = std::min(C, kCosFloorMin);
-    polish_floor_sine_ = std::sqrt(std::max(0.0, 1 - polish_floor_cos_ * polish_floor_cos_));
+    set_polish_floor(C);
     for (const auto& entry : list) {
       const int t = entry.second;
       if (!poll()) break;
