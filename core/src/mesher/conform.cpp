@@ -19,8 +19,8 @@ void Conform::run() {
   // marks the new vertex's neighbours (Rule3State::touched; see rule3_pass).
   Rule3State& state = state_;
   state = {};
-  // The caller's observer is back when this scope ends, however it ends.
   std::vector<int> ring;
+  // The caller's observer is back when this scope ends, however it ends.
   const ScopedObserver scope(ins_, [&](const Insertion&, int, int id) {
     if (id < 0) return;
     if (state.touched.size() < std::size_t(tri_.number_of_vertices()))

@@ -495,10 +495,9 @@ bool Improver::admissible(const Tet& T, double size_cap) const {
 
 bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh, double& worst_new,
                       double floor) const {
-  double worst_old = HUGE_VAL, size_cap = max_size_;
+  double size_cap = max_size_;
   if (polishing_ && !polish_room(old.size(), fresh.size())) return false;  // improve_polish.cpp
-  for (int t : old) worst_old = std::min(worst_old, q_[t]);
-  if (!std::isnan(floor)) worst_old = floor;
+  const double worst_old = std::isnan(floor) ? worst_of(old) : floor;
   worst_new = HUGE_VAL;
   for (const Tet& T : fresh) {
     worst_new = std::min(worst_new, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
@@ -680,8 +679,7 @@ bool Improver::remove_edge(int t, int i, int j) {
   // and (r_k, r_j, r_i, a); the dynamic programme (Klincsek's, as Shewchuk's
   // edge removal uses it) maximises the worst of them over the
   // triangulations of the ring's polygon.
-  double worst_old = HUGE_VAL;
-  for (int x : ts) worst_old = std::min(worst_old, q_[x]);
+  const double worst_old = worst_of(ts);
   // The phase's time (issue 14; the same meshes): outside fix_violations a
   // triangulation is taken only when its worst beats worst_old, and the
   // programme keeps, per sub-polygon, the first cut of the strictly largest
@@ -711,7 +709,7 @@ bool Improver::remove_edge(int t, int i, int j) {
       for (int y = x + 1; y < z; ++y) {
         const double sub = std::min(best[x][y], best[y][z]);
         if (sub <= prune) continue;
-        const double v = std::min({best[x][y], best[y][z], tri(x, y, z)});
+        const double v = std::min(sub, tri(x, y, z));
         if (v > best[x][z]) {
           best[x][z] = v;
           cut[x][z] = y;
@@ -878,6 +876,12 @@ double Improver::dihedral(int t) const {
     dih_[t] = tet_min_dihedral_deg(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
   }
   return dih_[t];
+}
+
+double Improver::worst_of(const std::vector<int>& live) const {
+  double worst = HUGE_VAL;
+  for (int t : live) worst = std::min(worst, q_[t]);
+  return worst;
 }
 
 double Improver::worst_min_sine(const std::vector<Tet>& fresh) const {
@@ -1068,9 +1072,7 @@ bool Improver::insert(int t) {
       // (ascend_new_point): outside fix_violations a candidate that does not
       // beat the cavity's worst is refused there; spare it (as
       // insert_boundary does; the same meshes).
-      double worst_old = HUGE_VAL;
-      for (int c : cav) worst_old = std::min(worst_old, q_[c]);
-      const bool hopeless = !fixing_ && !(placed > worst_old);
+      const bool hopeless = !fixing_ && !(placed > worst_of(cav));
       if (placed > best && !hopeless && accept(cav, fresh, w) && w > best) {
         best = w;
         best_old = cav;

@@ -122,6 +122,11 @@ constexpr double kDihedralActive = 1e-2;
 /// The polish's ties: a cosine must be below the one it beats by this much
 /// (1e-12, about 1e-10 degrees; why: improve_polish.cpp).
 constexpr double kPolishTieCos = 1e-12;
+/// The six edges ij of a tet, each with the two other vertices k and l (the
+/// polish's cosines, improve_polish.cpp, and their gradients,
+/// improve_dihedral.cpp, in this order).
+constexpr int kEdgeAndOthers[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
 /// The polish is off by default (MeshOptions::polish = false) because of
 /// issue 14's time goal (the phase under REFINE + PUMP's time): on slit,
 /// edge_facet, extrusion and slit-1 it takes the phase to 3 to 8 times
@@ -331,6 +336,8 @@ class Improver {
   double ascend_new_point(int p_id, const std::vector<Tet>& fresh, double start, int axes = 7);
   /// The smallest min-sine of the tets `fresh` (indices into P_), in their order.
   double worst_min_sine(const std::vector<Tet>& fresh) const;
+  /// The worst min-sine of the live tets `live` (q_; HUGE_VAL if none).
+  double worst_of(const std::vector<int>& live) const;
 
   MeshResult& r_;
   double rho_, max_size_;

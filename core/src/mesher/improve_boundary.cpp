@@ -355,8 +355,7 @@ bool Improver::insert_boundary(int t) {
         std::vector<Tet>& fresh = boundary_scratch_.fresh;
         std::vector<std::pair<int, Tri3>>& fan = boundary_scratch_.fan;
         if (!boundary_cavity(t, b, f, p, cav, fresh, fan)) continue;
-        double worst_old = HUGE_VAL;
-        for (int c : cav) worst_old = std::min(worst_old, q_[c]);
+        const double worst_old = worst_of(cav);
         P_.push_back(p);
         // Outside fix_violations() (beats()) a candidate must beat the
         // cavity's worst and the best so far. The outline's bound holds

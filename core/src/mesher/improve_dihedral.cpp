@@ -32,12 +32,8 @@ using geometry::dot;
 using geometry::mul;
 using geometry::sub;
 
-/// The six edges ij of a tet, each with the two other vertices k and l (as
-/// improve_polish.cpp's, in the same order).
-constexpr int kEdgeOthers[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
-
 /// The cosine c of the dihedral angle of tet p at edge ij (ijkl one row of
-/// kEdgeOthers) and its gradient g over the point p[s]; false when a face at
+/// kEdgeAndOthers) and its gradient g over the point p[s]; false when a face at
 /// the edge is degenerate.
 bool cosine_and_gradient(const Point3* const p[4], const int ijkl[4], int s, double& c, Point3& g) {
   const Point3 &pi = *p[ijkl[0]], e = sub(*p[ijkl[1]], pi), a = sub(*p[ijkl[2]], pi), b = sub(*p[ijkl[3]], pi);
@@ -135,7 +131,7 @@ bool Improver::ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin,
     for (const Tet& T : tets) {
       const Point3* p[4] = {&P_[T[0]], &P_[T[1]], &P_[T[2]], &P_[T[3]]};
       const int s = slot_of(T, v);
-      for (const auto& ijkl : kEdgeOthers) {
+      for (const auto& ijkl : kEdgeAndOthers) {
         double c;
         Point3 g;
         if (!cosine_and_gradient(p, ijkl, s, c, g) || c < current - margin * sine) continue;

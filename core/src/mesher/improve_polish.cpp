@@ -47,9 +47,6 @@ constexpr double kPrefilterMargin = 1e-9;
 // above sin(floor) (1 + kPrefilterMargin) puts the angle more than 1e-11
 // above the floor in cosine (the floor is at least 5 degrees), so the quick
 // test of polish_admits() agrees.
-/// The six edges ij of a tet, each with the two other vertices k and l.
-constexpr int kEdgeAndOthers[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
-                                      {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
 
 }  // namespace
 
