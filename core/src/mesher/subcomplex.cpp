@@ -32,11 +32,27 @@ std::uint64_t Subcomplex::add_segment(const Subsegment& s) {
   // on_p_ grows with vertex_segs_ (insert_vertex), so both ends have a byte.
   on_p_[s.a] |= kEndsSegment;
   on_p_[s.b] |= kEndsSegment;
+  note_segment_ends(s.a);
+  note_segment_ends(s.b);
   if (s.sector >= 0) {
     if (sector_segs_.size() <= std::size_t(s.sector)) sector_segs_.resize(s.sector + 1);
     sector_segs_[s.sector].push_back(k);
   }
   return k;
+}
+
+void Subcomplex::note_segment_ends(int v) {
+  const std::vector<std::uint64_t>& keys = vertex_segs_[v];
+  std::array<int, 2> r{{-1, -1}};
+  if (keys.size() > r.size()) {
+    r[0] = kManySegments;
+  } else {
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const int lo = int(keys[i] >> 32), hi = int(keys[i] & 0xFFFFFFFFu);
+      r[i] = lo == v ? hi : lo;
+    }
+  }
+  segment_ends_[v] = r;
 }
 
 int Subcomplex::add_sector(int u, const Sector& s) {
@@ -101,7 +117,7 @@ void Subcomplex::on_p_features(const std::vector<Tet>& cells, std::vector<std::u
     if (!(m[0] | m[1] | m[2] | m[3])) continue;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)
-        if (m[i] & m[j] & kEndsSegment) edges.push_back(edge_key(t[i], t[j]));
+        if ((m[i] & m[j] & kEndsSegment) && may_be_subsegment(t[i], t[j])) edges.push_back(edge_key(t[i], t[j]));
     for (int k = 0; k < 4; ++k)
       if (m[(k + 1) % 4] & m[(k + 2) % 4] & m[(k + 3) % 4] & kOnP)
         tris.push_back(sorted({{t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]}}));
@@ -152,6 +168,7 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
   new_segments.clear();
   vertex_segs_.emplace_back();
   on_p_.push_back(verts_[id].on != On::free ? kOnP : 0);
+  segment_ends_.push_back({{-1, -1}});
   if (ins.has_segment) {
     const auto it = segs_.find(ins.split_segment);
     if (it != segs_.end()) {
@@ -160,6 +177,7 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
       for (int end : {old.a, old.b}) {
         auto& list = vertex_segs_[end];
         list.erase(std::remove(list.begin(), list.end(), ins.split_segment), list.end());
+        note_segment_ends(end);
       }
       if (old.sector >= 0) {
         auto& list = sector_segs_[old.sector];

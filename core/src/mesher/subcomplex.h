@@ -180,13 +180,24 @@ class Subcomplex {
   /// 32 bytes a vertex, and this test runs on every vertex of every conflict
   /// zone and ring: a cache miss each).
   bool on_p(int v) const { return (p_marks(v) & kOnP) != 0; }
+  /// False only when ab is no subsegment; true when it is one, and also when
+  /// a has more than two subsegments (then only the map can tell). a must
+  /// be a vertex of V (inserted: insert_vertex). O(1): a read of a's record
+  /// of the other ends of its subsegments (beyond the paper, issue 15: more
+  /// than half of ENCROACH's look-ups of edges between ends of subsegments
+  /// missed the map).
+  bool may_be_subsegment(int a, int b) const {
+    const std::array<int, 2>& r = segment_ends_[a];
+    return r[0] == b || r[1] == b || r[0] == kManySegments;
+  }
   /// Appends the triangles (sorted) of cells whose vertices are all on P
   /// (on_p), and the edges (edge_key) whose two ends each end a subsegment
-  /// (now or before: a mark set by add_segment and never cleared): the only
-  /// ones that can be subfacets and subsegments (issue 15: most edges and
-  /// triangles of a refined mesh are left out before any look-up, and the
-  /// edges between vertices inside a facet too, most of those on P).
-  /// Unsorted, with repeats.
+  /// (now or before: a mark set by add_segment and never cleared) and that
+  /// may_be_subsegment lets through: a superset of the subfacets and
+  /// subsegments among them (issue 15: most edges and triangles of a refined
+  /// mesh are left out before any look-up, and the edges between vertices
+  /// inside a facet too, most of those on P, and the edges between two
+  /// subsegments' ends that are none). Unsorted, with repeats.
   void on_p_features(const std::vector<Tet>& cells, std::vector<std::uint64_t>& edges, std::vector<Tri>& tris) const;
   /// The subfacets of facet f at vertex v.
   void subfacets_at(int f, int v, std::vector<Tri>& out) const;
@@ -242,6 +253,13 @@ class Subcomplex {
   /// once id ends a subsegment (add_segment; on_p_features).
   std::vector<char> on_p_;
   static constexpr char kOnP = 1, kEndsSegment = 2;
+  /// By vertex id: the other ends of its subsegments (vertex_segs_) when it
+  /// has at most two (-1 in the unused places), else {kManySegments, -1}
+  /// (may_be_subsegment). Set from vertex_segs_ whenever that changes
+  /// (note_segment_ends).
+  std::vector<std::array<int, 2>> segment_ends_;
+  static constexpr int kManySegments = -2;
+  void note_segment_ends(int v);
   char p_marks(int v) const {
     if (static_cast<std::size_t>(v) < on_p_.size()) return on_p_[v];
     return v >= 0 && verts_[v].on != On::free ? kOnP : 0;  // (not yet inserted: ends no subsegment)
