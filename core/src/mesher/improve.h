@@ -794,6 +794,18 @@ class Improver {
   /// P_[v] at the best point; true when it moved. Only +, -, *, / and sqrt
   /// decide (native = wasm, as the rest of the polish).
   bool ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin, const std::function<bool()>& valid, int axes);
+
+  // ---- The polish's time (session 11, h3; improve_polish.cpp and
+  // improve_dihedral.cpp): the same decisions, hence the same meshes, bit
+  // for bit, with less arithmetic (ascend_dihedral(): the gradients of the
+  // nearly largest cosines only, the tet that failed the last trial point
+  // tried first, min_sine() only where the cosines leave it in doubt).
+ public:
+  /// largest_cosine(T) when it is below `bound` (the same value, bit for
+  /// bit), else some cosine of T at least `bound` (the edges after it are not
+  /// computed); largest_abs: the largest |cosine| of the edges computed (1
+  /// when a face is degenerate). largest_cosine(T) is it with bound +inf.
+  double largest_cosine_within(const Tet& T, double bound, double& largest_abs) const;
 };
 
 /// The phase on a finished, conforming run's extracted mesh r: records the

@@ -33,15 +33,19 @@ using geometry::mul;
 using geometry::sub;
 
 /// The cosine c of the dihedral angle of tet p at edge ij (ijkl one row of
-/// kEdgeAndOthers) and its gradient g over the point p[s]; false when a face at
-/// the edge is degenerate.
-bool cosine_and_gradient(const Point3* const p[4], const int ijkl[4], int s, double& c, Point3& g) {
+/// kEdgeAndOthers) and, when c is at least `low`, its gradient g over the
+/// point p[s]; false when a face at the edge is degenerate or c is below
+/// `low` (g then not computed: the descent needs only the gradients of the
+/// nearly largest cosines). c is largest_cosine()'s value for the edge, bit
+/// for bit.
+bool cosine_and_gradient(const Point3* const p[4], const int ijkl[4], int s, double low, double& c, Point3& g) {
   const Point3 &pi = *p[ijkl[0]], e = sub(*p[ijkl[1]], pi), a = sub(*p[ijkl[2]], pi), b = sub(*p[ijkl[3]], pi);
   const Point3 u = cross(e, a), w = cross(e, b);
   const double uu = dot(u, u), ww = dot(w, w);
   if (!(uu > 0 && ww > 0)) return false;
-  const double nu = std::sqrt(uu), nw = std::sqrt(ww);
   c = dot(u, w) / std::sqrt(uu * ww);
+  if (c < low) return false;
+  const double nu = std::sqrt(uu), nw = std::sqrt(ww);
   const Point3 uh = mul(u, 1 / nu), wh = mul(w, 1 / nw);
   const Point3 A = mul(sub(wh, mul(uh, c)), 1 / nu), B = mul(sub(uh, mul(wh, c)), 1 / nw);
   const Point3 gk = cross(A, e), gl = cross(B, e), gj = add(cross(a, A), cross(b, B));
@@ -55,6 +59,9 @@ bool cosine_and_gradient(const Point3* const p[4], const int ijkl[4], int s, dou
     g = mul(add(add(gj, gk), gl), -1);
   return true;
 }
+
+/// largest_at()'s prefilter margin (relative, in cosine).
+constexpr double kSureMargin = 1e-9;
 
 /// The slot of v in T (v is one of its vertices).
 int slot_of(const std::array<int, 4>& T, int v) { return T[0] == v ? 0 : T[1] == v ? 1 : T[2] == v ? 2 : 3; }
@@ -103,14 +110,29 @@ bool Improver::ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin,
   // The largest cosine of `tets` with v at x if it is below `bound` and
   // every tet's min-sine is at least polish_sine_floor_; else some value at
   // least `bound`.
+  // The tet that failed the last call is tried first (most points of the
+  // line searches fail, and mostly at the same tet): the answer does not
+  // depend on the order (a maximum, or a failure), as in smooth()'s valid().
+  std::size_t hard = 0;
+  // Every |cosine| of a tet below sure_cos = cos(asin(floor)) (1 - 1e-9)
+  // puts each sine, sqrt(1 - cos^2), above the floor by a relative margin of
+  // at least about 1e-9 cot^2(floor) (above 1e-10 for any tet's min-sine),
+  // far above the roundings of both measures, so min_sine() is computed only
+  // for the other tets: the same answer.
+  const double sure_cos = std::sqrt(std::max(0.0, 1 - polish_sine_floor_ * polish_sine_floor_)) * (1 - kSureMargin);
   auto largest_at = [&](const Point3& x, double bound) {
     const Point3 keep = P_[v];
     P_[v] = x;
     double c = -1;
-    for (const Tet& T : tets) {
-      c = std::max(c, largest_cosine(T));
-      if (!(c < bound) || !(min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) >= polish_sine_floor_)) {
+    for (std::size_t n = 0; n < tets.size(); ++n) {
+      const std::size_t i = n == 0 ? hard : n <= hard ? n - 1 : n;
+      const Tet& T = tets[i];
+      double largest_abs;
+      c = std::max(c, largest_cosine_within(T, bound, largest_abs));
+      if (!(c < bound) ||
+          (!(largest_abs < sure_cos) && !(min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]) >= polish_sine_floor_))) {
         c = std::max(c, bound);
+        hard = i;
         break;
       }
     }
@@ -128,13 +150,14 @@ bool Improver::ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin,
     const double sine = std::sqrt(std::max(0.0, 1 - current * current));
     gs.clear();
     double gmax = 0;  // the largest squared norm of those gradients
+    const double low = current - margin * sine;
     for (const Tet& T : tets) {
       const Point3* p[4] = {&P_[T[0]], &P_[T[1]], &P_[T[2]], &P_[T[3]]};
       const int s = slot_of(T, v);
       for (const auto& ijkl : kEdgeAndOthers) {
         double c;
         Point3 g;
-        if (!cosine_and_gradient(p, ijkl, s, c, g) || c < current - margin * sine) continue;
+        if (!cosine_and_gradient(p, ijkl, s, low, c, g)) continue;
         Point3 q{{0, 0, 0}};
         for (int k = 0; k < m; ++k) q[k] = dot(g, basis[k]);
         gmax = std::max(gmax, dot(q, q));

@@ -51,20 +51,29 @@ constexpr double kPrefilterMargin = 1e-9;
 }  // namespace
 
 double Improver::largest_cosine(const Tet& T) const {
+  double largest_abs;
+  return largest_cosine_within(T, HUGE_VAL, largest_abs);
+}
+
+double Improver::largest_cosine_within(const Tet& T, double bound, double& largest_abs) const {
   const Point3* p[4] = {&P_[T[0]], &P_[T[1]], &P_[T[2]], &P_[T[3]]};
   // The dihedral angle at edge ij is the angle between e x (p_k - p_i) and
   // e x (p_l - p_i), e = p_j - p_i (as wqmesh/quality.h's dihedral_deg):
   // its cosine is their dot product over the square root of the product of
   // their squared lengths. A degenerate face gives 1 (the angle 0).
   double c = -1;
+  largest_abs = 0;
   for (const auto& ijkl : kEdgeAndOthers) {
     const Point3& a = *p[ijkl[0]];
     const Point3 e = geometry::sub(*p[ijkl[1]], a);
     const Point3 nk = geometry::cross(e, geometry::sub(*p[ijkl[2]], a));
     const Point3 nl = geometry::cross(e, geometry::sub(*p[ijkl[3]], a));
     const double den = geometry::dot(nk, nk) * geometry::dot(nl, nl);
-    if (!(den > 0)) return 1;
-    c = std::max(c, geometry::dot(nk, nl) / std::sqrt(den));
+    if (!(den > 0)) return largest_abs = 1;
+    const double ce = geometry::dot(nk, nl) / std::sqrt(den);
+    c = std::max(c, ce);
+    largest_abs = std::max(largest_abs, std::fabs(ce));
+    if (!(c < bound)) return c;
   }
   return c;
 }
