@@ -854,6 +854,17 @@ bool RegularTriangulation::visit_labels(const std::function<void(const Tet&, cha
   return true;
 }
 
+bool RegularTriangulation::visit_cells(const std::function<void(const Tet&, CellRef, char)>& visit,
+                                       const std::function<bool(std::size_t)>& poll) const {
+  constexpr std::size_t kEvery = 1024;
+  std::size_t n = 0;
+  for (auto c = impl_->rt.all_cells_begin(); c != impl_->rt.all_cells_end(); ++c) {
+    if (poll && ++n % kEvery == 0 && !poll(kEvery)) return false;
+    visit(impl_->tet_of(c), static_cast<CellRef>(&*c), c->info().value);
+  }
+  return true;
+}
+
 namespace {
 // The loop of both visit_labelled: visit(c) for every cell c labelled
 // `label`, in cell_graph's order, polled as visit_labels polls.

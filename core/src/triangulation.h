@@ -206,6 +206,11 @@ class RegularTriangulation {
   /// which `visit` may change.
   bool visit_labels(const std::function<void(const Tet& t, char& label)>& visit,
                     const std::function<bool(std::size_t)>& poll = {}) const;
+  /// Visits every cell, finite or not, in cell_graph's order, with a CellRef
+  /// of it (for is_cell(t, ref) and label(ref) while it lives) and its label;
+  /// polled as visit_labels.
+  bool visit_cells(const std::function<void(const Tet& t, CellRef ref, char label)>& visit,
+                   const std::function<bool(std::size_t)>& poll = {}) const;
   /// Visits every cell whose label is `label`, in cell_graph's order, with
   /// the labels of its four neighbours (across[k]: the cell opposite t[k]).
   bool visit_labelled(char label, const std::function<void(const Tet& t, const std::array<char, 4>& across)>& visit,

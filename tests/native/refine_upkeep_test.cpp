@@ -3,13 +3,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "mesh_invariants.h"
+#include "mesher/extract.h"
 #include "mesher/mesher.h"
+#include "mesher/queues.h"
 
 namespace wqmesh {
 namespace {
@@ -84,6 +87,63 @@ TEST(RefineUpkeep, SegmentEndsRecordAgreesWithTheSubsegmentMap) {
   EXPECT_GT(checks, 100u);
   EXPECT_GT(subsegments, 0u);
   EXPECT_GT(refused, 0u);
+}
+
+// Queues::SliverRecord (rule 7's cells with an angle at theta or less)
+// brought up to date from the recorded cells that live on and the stars of
+// the vertices inserted since gives the same cells, angles and candidates
+// as a read of every cell: compared every few insertions of REFINE, with
+// the labels in the cells set by label_cells_in_place as rule 7 sets them.
+TEST(RefineUpkeep, SliverRecordKeptFromTheNewStarsIsAReadOfEveryCell) {
+  const std::vector<std::string> files = example_models({"slit.off", "thin_wedge.off", "spike.off", "edge_facet.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  std::size_t compared = 0, inside = 0, cells = 0;
+  using Record = mesher::Queues::SliverRecord;
+  const auto sorted_cells = [](const Record& r) {
+    std::vector<std::pair<Tet, double>> out;
+    for (const Record::Cell& c : r.cells) {
+      Tet t = c.t;
+      std::sort(t.begin(), t.end());
+      out.push_back({t, c.angle});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto always = [](std::size_t) { return true; };
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    MesherRun run(load(file));
+    mesher::Mesher& m = run.m;
+    const double theta = run.options.theta_deg;
+    Record kept;
+    int insertions = 0;
+    m.inserter().observer = [&](const mesher::Insertion&, int rule, int id) {
+      if (id < 0 || rule < 4 || ++insertions % 7 != 0) return;
+      if (!mesher::label_cells_in_place(m.domain(), m.subcomplex(), m.triangulation(), m.meter(), false)) {
+        kept.clear();
+        return;
+      }
+      const bool incremental = kept.valid;
+      std::vector<std::pair<double, int>> from_kept, from_all;
+      ASSERT_TRUE(kept.update(m.triangulation(), theta, from_kept, always));
+      Record fresh;
+      ASSERT_TRUE(fresh.update(m.triangulation(), theta, from_all, always));
+      if (!incremental) return;
+      std::sort(from_kept.begin(), from_kept.end());
+      std::sort(from_all.begin(), from_all.end());
+      ASSERT_EQ(from_kept, from_all) << "insertion " << id;
+      ASSERT_EQ(sorted_cells(kept), sorted_cells(fresh)) << "insertion " << id;
+      ++compared;
+      inside += from_all.size();
+      cells += fresh.cells.size();
+    };
+    m.initialize();
+    m.conform();
+    m.refine();
+  }
+  EXPECT_GT(compared, 20u);
+  EXPECT_GT(inside, 0u);  // some recorded cell was inside (a candidate)
+  EXPECT_GT(cells, 0u);
 }
 
 }  // namespace

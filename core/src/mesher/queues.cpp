@@ -9,6 +9,7 @@
 #include "mesher/queues.h"
 
 #include "mesher/mesher.h"
+#include "wqmesh/quality.h"
 
 namespace wqmesh::mesher {
 
@@ -356,6 +357,64 @@ void Queues::split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule) {
   // (The insertion may have changed h's facet: its size is not recorded.)
   if (inserter.insert(ins, rule) >= 0 && ins.has_segment && may_retry(h.v)) subfacets_.push_back({h, kUnknownSize});
   meter_.tick();
+}
+
+bool Queues::SliverRecord::update(const RegularTriangulation& tri, double theta_deg,
+                                  std::vector<std::pair<double, int>>& candidates,
+                                  const std::function<bool(std::size_t)>& poll) {
+  // Why the stars of the new vertices and the recorded cells that live on
+  // suffice: a cell that lived at the last update lives on unchanged (its
+  // angle too) or was destroyed, and its slot, if reused, holds a cell of a
+  // newer vertex (the insertions hide no vertex), which is_cell(t, ref)
+  // tells apart; every cell made since holds a vertex inserted since, in
+  // whose star it is, and is met there once, at the smallest such vertex.
+  // The labels are read from the cells as they are now.
+  std::vector<Cell> next;
+  const auto note = [&](const Tet& t, CellRef ref, char label, double angle) {
+    next.push_back({t, ref, angle});
+    if (label == 1)
+      for (int v : t) candidates.push_back({angle, v});
+  };
+  const auto angle_of = [&](const Tet& t) {
+    return tet_min_dihedral_deg_upto(tri.point(t[0]), tri.point(t[1]), tri.point(t[2]), tri.point(t[3]), theta_deg);
+  };
+  const auto finite = [](const Tet& t) { return std::find(t.begin(), t.end(), kInfinite) == t.end(); };
+  const int n = tri.number_of_vertices();
+  const bool incremental = valid;
+  valid = false;
+  if (incremental) {
+    for (const Cell& c : cells) {
+      if (!poll(1)) return false;
+      if (tri.is_cell(c.t, c.ref)) note(c.t, c.ref, tri.label(c.ref), c.angle);
+    }
+    std::vector<Tet> star;
+    std::vector<CellRef> refs;
+    for (int v = vertices; v < n; ++v) {
+      tri.incident_cells(v, star, &refs);
+      if (!poll(star.size())) return false;
+      for (std::size_t i = 0; i < star.size(); ++i) {
+        const Tet& t = star[i];
+        if (!finite(t)) continue;
+        int first = n;
+        for (int x : t)
+          if (x >= vertices) first = std::min(first, x);
+        if (first != v) continue;
+        const double angle = angle_of(t);
+        if (angle <= theta_deg) note(t, refs[i], tri.label(refs[i]), angle);
+      }
+    }
+  } else {
+    const auto visit = [&](const Tet& t, CellRef ref, char label) {
+      if (!finite(t)) return;
+      const double angle = angle_of(t);
+      if (angle <= theta_deg) note(t, ref, label, angle);
+    };
+    if (!tri.visit_cells(visit, poll)) return false;
+  }
+  cells.swap(next);
+  vertices = n;
+  valid = true;
+  return true;
 }
 
 bool Queues::may_retry(const Tri& t) {

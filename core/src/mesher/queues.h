@@ -48,6 +48,36 @@ class Queues {
   /// was deferred to another: whether it may be looked at again (at most
   /// Caps::kRetries times; past that the cap is counted).
   bool may_retry(const Tri& t);
+  /// Rule 7's record of its last pass (Refine::rule7_pass; beyond the paper,
+  /// issue 15): every finite cell of V's triangulation whose smallest
+  /// dihedral angle was at most theta when the record was last updated, with
+  /// its CellRef and that angle (tet_min_dihedral_deg_upto's double, bound
+  /// theta), whatever its label; and the number of vertices then. Kept here,
+  /// beside rule 6's queue of tets, from one pass to the next.
+  struct SliverRecord {
+    struct Cell {
+      Tet t;
+      CellRef ref;
+      double angle;
+    };
+    std::vector<Cell> cells;
+    int vertices = 0;
+    bool valid = false;  ///< updated, and V only grew by insertions since
+    /// Brings the record up to date with `tri` and appends (angle, v) to
+    /// `candidates` for each vertex v of every recorded cell labelled 1 (the
+    /// labels in the cells must be set: label_cells_in_place). The same
+    /// record and candidates (as multisets) as a read of every cell; when
+    /// `valid`, reads only the recorded cells that live on and the stars of
+    /// the vertices inserted since (queues.cpp says why that is enough),
+    /// which needs V to have changed by unhidden insertions only since the
+    /// last update (REFINE). `poll` (as a phase's scan) may stop it: false,
+    /// and the record is then invalid.
+    bool update(const RegularTriangulation& tri, double theta_deg, std::vector<std::pair<double, int>>& candidates,
+                const std::function<bool(std::size_t)>& poll);
+    /// Forgets the cells and frees their memory (valid = false).
+    void clear() { *this = SliverRecord{}; }
+  };
+  SliverRecord& sliver_record() { return sliver_record_; }
 
  private:
   /// Rules 1 and 4: SPLITE of the queued subsegment k if it is encroached.
@@ -67,6 +97,7 @@ class Queues {
   const Subcomplex& sub_;
   WorkMeter& meter_;
   std::deque<std::uint64_t> segments_;  ///< rules 1 and 4
+  SliverRecord sliver_record_;
   /// A queued subfacet and `facet_size`, the number of vertices of its
   /// facet's planar triangulation when it was queued as one of that
   /// triangulation's subfacets (kUnknownSize when not known to be one then).

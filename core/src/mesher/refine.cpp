@@ -54,6 +54,7 @@ void Refine::run() {
   for (; pass < Caps::kRule7Passes && !meter_.stopped(); ++pass)
     if (!rule7_pass()) break;
   if (pass == Caps::kRule7Passes) meter_.cap_reached();
+  queues_.sliver_record().clear();  // (its memory back before PUMP)
 }
 
 bool Refine::process_queues() {
@@ -119,12 +120,16 @@ bool Refine::rule7_pass() {
   // the cells' order (label_cells_in_place: no cell graph beside the
   // triangulation, issue 15, the peak memory), else on a cell graph in
   // CGAL's order; the candidates are sorted, so their order is free.
+  Queues::SliverRecord& record = queues_.sliver_record();
   if (label_cells_in_place(dom_, sub_, tri_, meter_, true)) {
-    // (The cells alone, without their neighbours' labels: issue 15.)
-    if (!tri_.visit_labelled(
-            1, [&](const Tet& t) { add(t); }, [&](std::size_t n) { return meter_.poll(n, false); }))
+    // Beyond the paper (issue 15): the cells with an angle at theta or less
+    // are recorded whatever their label (Queues::SliverRecord), and a pass
+    // after one that recorded them reads only those that live on and the
+    // cells made since, instead of every cell: the same candidates.
+    if (!record.update(tri_, opt_.theta_deg, candidates, [&](std::size_t n) { return meter_.poll(n, false); }))
       return false;
   } else {
+    record.clear();
     if (meter_.stopped()) return false;
     const RegularTriangulation::CellGraph g = meter_.scan_cell_graph(tri_);
     if (meter_.stopped()) return false;
