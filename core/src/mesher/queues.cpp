@@ -178,43 +178,56 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
   std::vector<CellRef>& refs = star_refs_;
   tri_.incident_cells(v, cells, &refs);
   meter_.poll(cells.size() + cavity.size());
-  std::vector<std::uint64_t>& edges = cavity_edges_;
-  std::vector<Tri>& tris = cavity_tris_;
-  edges.clear();
-  tris.clear();
-  sub_.on_p_features(cavity, edges, tris);
+  // The cavity's subsegments (in key order) and its triangles with every
+  // vertex on P and a facet holding them (sorted, no repeats): kept by
+  // ENCROACH when it searched this very zone (Subcomplex::zone_features,
+  // issue 15), else read from the cavity here.
+  std::vector<const Subsegment*>& segs = cavity_segs_;
+  segs.clear();
+  const Subcomplex::ZoneFeatures* kept = sub_.zone_features(tri_.point(v), cavity);
+  if (kept) {
+    segs = kept->segments;
+  } else {
+    std::vector<std::uint64_t>& edges = cavity_edges_;
+    std::vector<Tri>& tris = cavity_tris_;
+    edges.clear();
+    tris.clear();
+    sub_.on_p_features(cavity, edges, tris);
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    // One look-up per key: the subsegment found is kept (the map's nodes
+    // stay where they are until the next insertion).
+    for (std::uint64_t k : edges) {
+      const auto it = sub_.subsegments().find(k);
+      if (it != sub_.subsegments().end()) segs.push_back(&it->second);
+    }
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  }
+  const std::vector<Tri>& tris = kept ? kept->tris : cavity_tris_;
   // The features are queued in the order enqueue_around's walk of the ring
   // meets them (so that the rules split the same ones first): a subsegment
   // ab (a < b) at a, in the order of subsegments_at(a); a subfacet at its
   // smallest vertex x, by f's place in facets_of(x) and then the triangle's
   // place in x's star in f (or, for a fan apex, along its edges to the ring
   // vertices in id order).
-  if (!edges.empty()) {
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  if (!segs.empty()) {
     auto& order = cavity_order_;
     order.clear();
-    // One look-up per key: the subsegment found is kept (the map's nodes
-    // stay where they are until the next insertion).
-    for (std::uint64_t k : edges) {
-      const auto it = sub_.subsegments().find(k);
-      if (it == sub_.subsegments().end()) continue;
+    for (const Subsegment* s : segs) {
+      const std::uint64_t k = edge_key(s->a, s->b);
       const int a = int(k >> 32);  // the smaller end
       const std::vector<std::uint64_t>& at = sub_.subsegments_at(a);
       const auto pos = std::find(at.begin(), at.end(), k) - at.begin();
       order.push_back({{a, int(pos), 0}, order.size()});
-      cavity_segs_.push_back(&it->second);
     }
     std::sort(order.begin(), order.end());
     for (const auto& o : order) {
-      const Subsegment& s = *cavity_segs_[o.second];
+      const Subsegment& s = *segs[o.second];
       queue(edge_key(s.a, s.b), s);
     }
-    cavity_segs_.clear();
   }
   if (!tris.empty()) {
-    std::sort(tris.begin(), tris.end());
-    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
     std::vector<int>& fs = fs_;
     std::vector<Tri>& pair = pair_;
     std::vector<int>&f1 = f1_, &f2 = f2_;

@@ -273,7 +273,8 @@ bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
 }
 
 void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& seg_out,
-                                     std::vector<Subfacet>& facet_out, CellRef start, std::vector<int>* zone) const {
+                                     std::vector<Subfacet>& facet_out, CellRef start, std::vector<int>* zone,
+                                     bool keep) const {
   // When no subsegment (subfacet) is encroached by a vertex, a point that
   // encroaches one conflicts with a cell incident to it: along the pencil of
   // spheres through its vertices the power of the point is affine, negative at
@@ -281,6 +282,11 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   // negative at one of its vertices, the circumcenters of the incident cells.
   seg_out.clear();
   facet_out.clear();
+  zone_vertices_ = -1;
+  std::vector<const Subsegment*>& kept_segments = zone_features_.segments;
+  std::vector<Tri>& kept_tris = zone_features_.tris;
+  kept_segments.clear();
+  kept_tris.clear();
   std::vector<Tet>& cells = scratch_.cells;
   // (The order of the cells does not matter: the edges, and the triangles
   // whose diametric balls hold c, are sorted below.)
@@ -306,7 +312,9 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   for (std::uint64_t k : edges) {
     const auto it = segs_.find(k);
-    if (it == segs_.end() || it->second.in_ball) continue;
+    if (it == segs_.end()) continue;
+    if (keep) kept_segments.push_back(&it->second);
+    if (it->second.in_ball) continue;
     if (in_diametric_ball(c, tri_.point(it->second.a), tri_.point(it->second.b))) seg_out.push_back(k);
   }
   std::vector<int>&f0 = scratch_.f0, &f1 = scratch_.f1, &f2 = scratch_.f2;
@@ -331,21 +339,47 @@ void Subcomplex::encroached_by_point(const Point3& c, int hint, std::vector<std:
   std::vector<Tri>& hits = scratch_.hits;
   std::vector<int>& fs = scratch_.fs;
   hits.clear();
-  for (const Tri& t : tris) {
-    common_facets(t, fs);
-    if (fs.empty()) continue;
-    double r2;
-    const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
-    if (dist2(c, cc) < r2) hits.push_back(t);
+  if (keep) {
+    // Every candidate sorted first, as the upkeep of the insertion needs
+    // them (zone_features): then the ball test runs once per triangle, and
+    // the hits come sorted, without repeats.
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    for (const Tri& t : tris) {
+      common_facets(t, fs);
+      if (fs.empty()) continue;
+      kept_tris.push_back(t);
+      double r2;
+      const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
+      if (dist2(c, cc) < r2) hits.push_back(t);
+    }
+    zone_point_ = c;
+    zone_vertices_ = tri_.number_of_vertices();
+    zone_cells_ = cells.size();
+  } else {
+    for (const Tri& t : tris) {
+      common_facets(t, fs);
+      if (fs.empty()) continue;
+      double r2;
+      const Point3 cc = circumcenter(tri_.point(t[0]), tri_.point(t[1]), tri_.point(t[2]), r2);
+      if (dist2(c, cc) < r2) hits.push_back(t);
+    }
+    std::sort(hits.begin(), hits.end());
+    hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
   }
   if (hits.empty()) return;
-  std::sort(hits.begin(), hits.end());
-  hits.erase(std::unique(hits.begin(), hits.end()), hits.end());
   for (const Tri& t : hits) {
     common_facets(t, fs);
     for (int f : fs)
       if (is_subfacet(f, t)) facet_out.push_back({f, t});
   }
+}
+
+const Subcomplex::ZoneFeatures* Subcomplex::zone_features(const Point3& p, const std::vector<Tet>& cavity) const {
+  if (zone_vertices_ < 0 || zone_vertices_ + 1 != tri_.number_of_vertices() || zone_cells_ != cavity.size() ||
+      zone_point_ != p)
+    return nullptr;
+  return &zone_features_;
 }
 
 // ---- SPLITE and SPLITF (section 4.2) ---------------------------------------------
@@ -455,7 +489,7 @@ Insertion Subcomplex::splitf(const Subfacet& h) const {
 Insertion Subcomplex::encroach(const Point3& c, int hint, CellRef start) const {
   std::vector<std::uint64_t> segs;
   std::vector<Subfacet> facets;
-  encroached_by_point(c, hint, segs, facets, start);
+  encroached_by_point(c, hint, segs, facets, start, nullptr, true);
   if (!segs.empty()) return splite(segs_.at(*std::min_element(segs.begin(), segs.end())));
   if (!facets.empty()) {
     // "One such subfacet h contains the orthogonal projection of c." When

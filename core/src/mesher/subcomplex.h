@@ -230,8 +230,26 @@ class Subcomplex {
   /// the cells the point conflicts with (see the argument in subcomplex.cpp).
   /// `zone`, when given, gets the finite vertices of those cells (sorted,
   /// no repeats; Conform's rule 3 records them).
+  /// `keep`: also keep the zone's features for the upkeep of c's insertion
+  /// (zone_features; ENCROACH's call); same answers.
   void encroached_by_point(const Point3& c, int hint, std::vector<std::uint64_t>& segs, std::vector<Subfacet>& facets,
-                           CellRef start = nullptr, std::vector<int>* zone = nullptr) const;
+                           CellRef start = nullptr, std::vector<int>* zone = nullptr, bool keep = false) const;
+  /// The features of the zone ENCROACH last searched, kept for the upkeep
+  /// of the free insertion of its point (beyond the paper, issue 15: the
+  /// same zone's edges and triangles were read, sorted and looked up again
+  /// by Queues::enqueue_from_cavity): the subsegments among the zone's edges
+  /// in key order, and its triangles with every vertex on P that some facet
+  /// of P holds whole, sorted, without repeats.
+  struct ZoneFeatures {
+    std::vector<const Subsegment*> segments;
+    std::vector<Tri> tris;
+  };
+  /// zone_features(p, cavity) when `cavity` is the cavity of the insertion
+  /// of p just made (RegularTriangulation::last_cavity) and ENCROACH's last
+  /// search was of p's zone in V before that insertion, with no other
+  /// search since: then the cavity is that zone and these are its features
+  /// (a free insertion changes no subsegment). Else nullptr.
+  const ZoneFeatures* zone_features(const Point3& p, const std::vector<Tet>& cavity) const;
   /// A subfacet whose diametric ball lies inside a protecting ball.
   bool guarded(const Subfacet& h) const;
   /// Whether every subsegment and subfacet is in the triangulation.
@@ -275,6 +293,12 @@ class Subcomplex {
     std::vector<int> f0, f1, f2, fs;
   };
   mutable EncroachScratch scratch_;
+  /// encroached_by_point's kept zone (keep): its point, the size of V and
+  /// the number of cells then (vertices -1: none kept).
+  mutable ZoneFeatures zone_features_;
+  mutable Point3 zone_point_{{0, 0, 0}};
+  mutable int zone_vertices_ = -1;
+  mutable std::size_t zone_cells_ = 0;
   std::vector<std::vector<std::uint64_t>> sector_segs_;  ///< shield subsegments per sector
   std::vector<PlanarDelaunay> facet_dt_;
   bool frozen_ = false;
