@@ -145,6 +145,54 @@ TEST(Improve, TheWholePhaseDoesAtLeastAsWellAsTheFirstFlip) {
   EXPECT_GE(c.r.improve.changes(), 1u);
 }
 
+// The stopping rule's judge (Improver::pass_improves): a pass improves when
+// the smallest dihedral angle rises or the count under kQualityCountDeg
+// falls, either one strictly; a pass that leaves both as they were, or
+// makes both worse, stalls.
+TEST(Improve, APassImprovesOnlyWhenTheSmallestAngleRisesOrTheCountUnderFiveFalls) {
+  using Q = Improver::QualityMeasures;
+  const Q before{2.0, 10};
+  EXPECT_FALSE(Improver::pass_improves(before, before));
+  EXPECT_TRUE(Improver::pass_improves(before, Q{2.5, 10}));
+  EXPECT_TRUE(Improver::pass_improves(before, Q{2.0, 9}));
+  EXPECT_TRUE(Improver::pass_improves(before, Q{1.5, 9}));   // fewer under 5 degrees is enough
+  EXPECT_TRUE(Improver::pass_improves(before, Q{2.5, 11}));  // a higher smallest angle is enough
+  EXPECT_FALSE(Improver::pass_improves(before, Q{1.5, 11}));
+  EXPECT_FALSE(Improver::pass_improves(before, Q{1.5, 10}));
+}
+
+// The measures the rule judges are those of the live tets, as the library's
+// own tet_min_dihedral_deg gives them, before and after the phase; and the
+// phase never leaves them worse than it found them on the smallest angle.
+TEST(Improve, TheStoppingRulesMeasuresAreThoseOfTheLiveTets) {
+  auto recount = [](const MeshResult& r) {
+    Improver::QualityMeasures m;
+    for (const auto& t : r.mesh.tets) {
+      const double d = tet_min_dihedral_deg(r.mesh.vertices[t[0]], r.mesh.vertices[t[1]], r.mesh.vertices[t[2]],
+                                            r.mesh.vertices[t[3]]);
+      m.smallest_dihedral_deg = std::min(m.smallest_dihedral_deg, d);
+      m.under_count_deg += d < mesher::kQualityCountDeg;
+    }
+    return m;
+  };
+  Config c = sliver_octahedron();
+  const Improver::QualityMeasures before = recount(c.r);
+  ASSERT_EQ(before.under_count_deg, 1u);  // the sliver
+  Improver im(c.r, 2.2, 0);
+  const Improver::QualityMeasures first = im.quality_measures();
+  EXPECT_EQ(first.smallest_dihedral_deg, before.smallest_dihedral_deg);
+  EXPECT_EQ(first.under_count_deg, before.under_count_deg);
+  ASSERT_TRUE(im.run());
+  const Improver::QualityMeasures last = im.quality_measures();
+  EXPECT_GE(last.smallest_dihedral_deg, before.smallest_dihedral_deg);
+  EXPECT_TRUE(Improver::pass_improves(before, last));  // the sliver is gone
+  im.finish();
+  const Improver::QualityMeasures after = recount(c.r);
+  EXPECT_EQ(after.smallest_dihedral_deg, last.smallest_dihedral_deg);
+  EXPECT_EQ(after.under_count_deg, last.under_count_deg);
+  EXPECT_LE(c.r.improve.passes, mesher::kImprovePasses);
+}
+
 TEST(Improve, TwoThreeFlipThroughAFlatFace) {
   // Two flat tets on the triangle xyz, apexes d above and e below.
   Config c;

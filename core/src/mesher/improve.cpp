@@ -1146,6 +1146,21 @@ std::size_t Improver::fix_violations() {
   return n;
 }
 
+Improver::QualityMeasures Improver::quality_measures() const {
+  QualityMeasures m;
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t))) {
+      const double d = dihedral(int(t));
+      m.smallest_dihedral_deg = std::min(m.smallest_dihedral_deg, d);
+      m.under_count_deg += d < kQualityCountDeg;
+    }
+  return m;
+}
+
+bool Improver::pass_improves(const QualityMeasures& before, const QualityMeasures& after) {
+  return after.smallest_dihedral_deg > before.smallest_dihedral_deg || after.under_count_deg < before.under_count_deg;
+}
+
 bool Improver::run() {
   const double target = std::sin(kImproveTargetDeg * geometry::kPi / 180);
   const double insert_below = std::sin(kInsertBelowDeg * geometry::kPi / 180);
@@ -1168,9 +1183,10 @@ bool Improver::run() {
     }
     return n;
   };
-  for (int pass = 0; pass < kImprovePasses; ++pass) {
-    std::size_t changed = flips();
-    // Smoothing: the free vertices of the bad tets.
+  // Smoothing: the free vertices of the bad tets, each only after its star
+  // changed.
+  auto smoothing = [&]() {
+    std::size_t n = 0;
     std::vector<int> verts;
     for (int t : bad_tets(target))
       for (int v : tets_[t])
@@ -1181,13 +1197,15 @@ bool Improver::run() {
       if (!poll()) break;
       if (smoothed_[v] >= 0 && vtime_[v] <= smoothed_[v]) continue;  // its star has not changed
       if (smooth(v))
-        ++changed;
+        ++n;
       else
         smoothed_[v] = clock_;
     }
-    changed += flips();
-    // Insertion where a sliver is left, then flips and smoothing around the
-    // new vertex.
+    return n;
+  };
+  // Insertion where a sliver is left, then smoothing of the new vertex.
+  auto insertion = [&]() {
+    std::size_t n = 0;
     for (int t : bad_tets(insert_below)) {
       if (!poll()) break;
       if (!alive(t) || !(q_[t] < insert_below) || !fresh_since(insert_tried_[t], tets_[t])) continue;
@@ -1195,15 +1213,43 @@ bool Improver::run() {
         insert_tried_[t] = clock_;
         continue;
       }
-      ++changed;
+      ++n;
       const int v = int(P_.size()) - 1;
-      changed += smooth(v);
+      n += smooth(v);
     }
-    changed += contract_pass();  // what the others left (improve_contract.cpp)
+    return n;
+  };
+  // Beyond the paper, a choice for the phase's time (issue 14; figures of
+  // 2026-12-03 in BENCHMARKS.md, "Session 11, h1"): a pass is contraction,
+  // flips, smoothing, contraction, and insertion only in a pass that follows
+  // a stalled one (pass_improves()). Contraction first removes the most tets
+  // under 5 degrees for the least work and leaves fewer tets to flip and
+  // smooth; insertion is the dearest operation (on wedge and wedge-1 half
+  // of the phase's time when it ran in every pass) and, tried while the
+  // cheaper operations still make progress, it left as many tets under 5
+  // degrees or more (wedge 97 either way, wedge-1 161 against 144).
+  QualityMeasures before = quality_measures();
+  bool insert_next = false;
+  for (int pass = 0; pass < kImprovePasses; ++pass) {
+    std::size_t changed = contract_pass();  // improve_contract.cpp
+    changed += flips();
+    changed += smoothing();
+    if (insert_next) changed += insertion();
+    changed += contract_pass();
     changed += fix_violations();
     if (cancelled_) return false;
     st_.passes = pass + 1;
-    if (changed == 0) break;
+    // A pass that changes nothing or does not improve the measures stalls:
+    // the next one adds insertion; a stalled pass with insertion ends the
+    // phase.
+    const QualityMeasures after = changed == 0 ? before : quality_measures();
+    if (changed == 0 || !pass_improves(before, after)) {
+      if (insert_next) break;
+      insert_next = true;
+    } else {
+      insert_next = false;
+    }
+    before = after;
   }
   st_.polished = polish_on_ ? polish() : 0;  // improve_polish.cpp (off unless MeshOptions::polish)
   return !cancelled_;

@@ -42,10 +42,16 @@
 
 namespace wqmesh::mesher {
 
-/// Passes at most (each: flips, smoothing, flips again, insertion where a
-/// sliver is left, over the tets below kImproveTargetDeg); the phase stops
-/// earlier after a pass that improves nothing.
+/// Passes at most (each: contraction, flips, smoothing, contraction, over
+/// the tets below kImproveTargetDeg; insertion where a sliver is left only in
+/// a pass after a stalled one: Improver::run); the phase stops earlier after
+/// a stalled pass with insertion.
 constexpr int kImprovePasses = 6;
+/// Beyond the paper, a choice (issue 14's measures): a pass stalls when it
+/// neither raises the mesh's smallest dihedral angle nor lowers the count of
+/// tets whose smallest dihedral angle is under kQualityCountDeg degrees
+/// (Improver::pass_improves).
+constexpr double kQualityCountDeg = 5;
 /// Tets whose min-sine is below sin(kImproveTargetDeg) are worked on (20:
 /// on the 20mm cube and slit-1 the same smallest angle as with 30, in a
 /// fifth to a third of the time).
@@ -170,7 +176,23 @@ class Improver {
   void set_classes(const ProtectingBalls* balls, double theta_deg);
   /// Runs up to kImprovePasses passes; false when keep_going returned false
   /// (the mesh is then valid but only partly improved). Call finish() after.
+  /// A pass stalls when it changes nothing or does not improve the quality
+  /// measures (pass_improves); a pass after a stalled one adds insertion, and
+  /// the phase stops after a stalled pass with insertion. So at most two
+  /// passes in a row leave the measures as they were.
   bool run();
+  /// The phase's quality measures of the live tets (issue 14's): the
+  /// smallest dihedral angle (degrees; 180 without tets) and the count of
+  /// tets under kQualityCountDeg.
+  struct QualityMeasures {
+    double smallest_dihedral_deg = 180;
+    std::size_t under_count_deg = 0;
+  };
+  QualityMeasures quality_measures() const;
+  /// Whether a pass from `before` to `after` improves the measures: the
+  /// smallest dihedral angle rises or the count under kQualityCountDeg falls
+  /// (strictly; either is enough).
+  static bool pass_improves(const QualityMeasures& before, const QualityMeasures& after);
   /// Writes the mesh back into r (live tets and boundary triangles, compact)
   /// and fills r.improve's operation counts and passes.
   void finish();
