@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -119,14 +120,30 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
       vtet_[tets_[t][k]] = int(t);
     }
   for (std::size_t b = 0; b < bnd_.size(); ++b) faces.push_back({unoriented(bnd_[b]), -1 - int(b), -1});
-  std::stable_sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+  // The faces in the order of a stable sort by key. The phase's time (issue
+  // 14; the same order): below 2^21 vertices a sorted face packs into 63
+  // bits, and (packed key, index) pairs sort to that order at once.
+  std::vector<std::pair<std::uint64_t, int>> order(faces.size());
+  if (P_.size() < (std::size_t(1) << 21)) {
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      const Tri& f = faces[i].key;
+      order[i] = {std::uint64_t(f[0]) << 42 | std::uint64_t(f[1]) << 21 | std::uint64_t(f[2]), int(i)};
+    }
+    std::sort(order.begin(), order.end());
+  } else {
+    for (std::size_t i = 0; i < faces.size(); ++i) order[i] = {0, int(i)};
+    std::stable_sort(order.begin(), order.end(),
+                     [&faces](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
+                       return faces[a.second].key < faces[b.second].key;
+                     });
+  }
   // A face with neither a neighbour nor a boundary triangle (a mesh that is
   // not closed) gets the code -1 - bnd_.size(), which names no triangle: it
   // is never flipped and its vertices never move.
   const int kOpen = -1 - int(bnd_.size());
   nb_.assign(tets_.size(), {{kOpen, kOpen, kOpen, kOpen}});
   for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
-    const Face &a = faces[i], &b = faces[i + 1];
+    const Face &a = faces[order[i].second], &b = faces[order[i + 1].second];
     if (a.key != b.key) continue;
     if (a.tet >= 0) nb_[a.tet][a.k] = b.tet;
     if (b.tet >= 0) nb_[b.tet][b.k] = a.tet;
@@ -298,18 +315,23 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   if (!classifier_) return;
   if (shape_.size() < tets_.size()) shape_.resize(tets_.size(), TetClassifier::Shape::good);
   if (L2_.size() < P_.size()) L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0);
+  // The vertices of ids in the order met (learn_marks_: v -> its index;
+  // the phase's time, issue 14: they were sorted, and searched below; each
+  // vertex's L_v is its own, so their order changes no value).
   std::vector<int>& verts = learn_verts_;
   verts.clear();
+  learn_marks_.reset(P_.size());
   for (int t : ids) {
     const Tet& T = tets_[t];
     shape_[t] = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q_[t]);
     for (int v : T) {
       bad_at_[v] += shape_[t] != TetClassifier::Shape::good;
-      verts.push_back(v);
+      if (!learn_marks_.has(v)) {
+        learn_marks_.put(v, int(verts.size()));
+        verts.push_back(v);
+      }
     }
   }
-  std::sort(verts.begin(), verts.end());
-  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
   const bool forgot = forgot_;
   forgot_ = false;
   if (moved < 0) {
@@ -324,7 +346,7 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
     for (int t : ids) {
       const Tet& T = tets_[t];
       for (int i = 0; i < 4; ++i) {
-        double& m = fresh[std::lower_bound(verts.begin(), verts.end(), T[i]) - verts.begin()];
+        double& m = fresh[std::size_t(learn_marks_.get(T[i]))];
         m = std::min(m, shortest_edge2_at(P_, T, i));
       }
     }
@@ -357,14 +379,20 @@ void Improver::classes_before(const std::vector<int>& old, ClassesBefore& b) con
   b.violations = 0;
   b.verts.clear();
   b.bad_used = 0;
+  b.slot.reset(P_.size());
   if (!classifier_) {
     b.inside.clear(), b.bad_inside.clear(), b.outside.clear(), b.outside_known.clear(), b.bad_list.clear();
     return;
   }
+  // The phase's time (issue 14): the vertices in the order met, found
+  // through b.slot (they were sorted and searched; no value depends on
+  // their order).
   for (int t : old)
-    for (int v : tets_[t]) b.verts.push_back(v);
-  std::sort(b.verts.begin(), b.verts.end());
-  b.verts.erase(std::unique(b.verts.begin(), b.verts.end()), b.verts.end());
+    for (int v : tets_[t])
+      if (!b.slot.has(v)) {
+        b.slot.put(v, int(b.verts.size()));
+        b.verts.push_back(v);
+      }
   const std::size_t n = b.verts.size();
   b.inside.assign(n, HUGE_VAL);
   b.bad_inside.assign(n, 0);
@@ -385,8 +413,8 @@ void Improver::classes_before(const std::vector<int>& old, ClassesBefore& b) con
   }
 }
 
-int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& before,
-                             const std::vector<Tet>& fresh) const {
+int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& before, const std::vector<Tet>& fresh,
+                             const std::vector<double>* fresh_q) const {
   if (!classifier_) return 0;
   const auto cur = [&](int v) { return v < int(L2_.size()) ? L2_[v] : HUGE_VAL; };
   // L_v^2 after the change at each vertex of the new tets: the shorter of
@@ -433,9 +461,10 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
     return at < 0 ? cur(v) : after[at].second;
   };
   int violations = 0;
-  for (const Tet& T : fresh) {
-    const TetClassifier::Shape sh =
-        classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+  for (std::size_t i = 0; i < fresh.size(); ++i) {
+    const Tet& T = fresh[i];
+    const double q = fresh_q ? (*fresh_q)[i] : min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    const TetClassifier::Shape sh = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q);
     if (sh == TetClassifier::Shape::good) continue;
     violations += classifier_->classify(sh, P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
                                         {{l2_after(T[0]), l2_after(T[1]), l2_after(T[2]), l2_after(T[3])}}) ==
@@ -499,8 +528,11 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   if (polishing_ && !polish_room(old.size(), fresh.size())) return false;  // improve_polish.cpp
   const double worst_old = std::isnan(floor) ? worst_of(old) : floor;
   worst_new = HUGE_VAL;
+  std::vector<double>& fresh_q = accept_q_;
+  fresh_q.clear();
   for (const Tet& T : fresh) {
-    worst_new = std::min(worst_new, min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    fresh_q.push_back(min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    worst_new = std::min(worst_new, fresh_q.back());
     if (!beats(worst_new, worst_old)) return false;
   }
   for (const Tet& T : fresh)
@@ -517,19 +549,15 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
     if (!admissible(T, size_cap)) return false;
   if (polishing_ && polish_dihedral_ && !polish_lowers_cosine(old, fresh)) return false;  // improve_polish.cpp
   classes_before(old, accept_before_);
-  const int change = classes_change(old, accept_before_, fresh);
+  const int change = classes_change(old, accept_before_, fresh, &fresh_q);
   return fixing_ ? change < 0 : change <= 0;
 }
 
 bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
                        const std::vector<std::pair<int, std::array<int, 3>>>& boundary, int vanishing) {
   // The outer faces of the old set, outward, with what lies beyond each.
-  struct Outer {
-    Tri key;
-    int beyond, beyond_slot;
-    bool used;
-  };
-  std::vector<Outer> outer;
+  std::vector<ReplaceOuter>& outer = replace_outer_;
+  outer.clear();
   set_marks_.reset(tets_.size());
   for (int t : old) set_marks_.put(t);
   for (int t : old)
@@ -543,7 +571,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
       outer.push_back({outward_face(tets_[t], k), n, s, false});
     }
   for (const auto& [b, tri] : boundary)
-    for (Outer& o : outer)
+    for (ReplaceOuter& o : outer)
       if (o.beyond == -1 - b) {
         if (tri[0] < 0)
           o.used = true;  // deleted (a contraction): nothing new faces it
@@ -554,29 +582,36 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
   // face of its own.
   for (const auto& [b, tri] : boundary)
     if (b >= int(bnd_.size())) outer.push_back({rotated(tri), -1 - b, -1, false});
-  // Every vertex of the old set stays in the new one (but `vanishing`).
+  // Every vertex of the old set stays in the new one (but `vanishing`). The
+  // phase's time (issue 14): the new tets' vertices are marked once (each
+  // old vertex was looked for in every new tet, quadratic in a star's size).
+  replace_marks_.reset(P_.size());
+  for (const Tet& T : fresh)
+    for (int v : T) replace_marks_.put(v);
   for (int t : old)
-    for (int v : tets_[t]) {
-      bool found = v == vanishing;
-      for (const Tet& T : fresh) found = found || T[0] == v || T[1] == v || T[2] == v || T[3] == v;
-      if (!found) return false;
-    }
+    for (int v : tets_[t])
+      if (v != vanishing && !replace_marks_.has(v)) return false;
   // Match the new faces: in pairs of opposite orientation, or to an outer
-  // face of the same orientation; each outer face exactly once.
-  struct New {
-    Tri key, sorted;
-    int i, k;
-  };
-  std::vector<New> faces;
+  // face of the same orientation; each outer face exactly once (the last
+  // unused one of that key, as the linear search of before took; the outer
+  // faces are looked up by key in `by_key`, sorted by key, then index).
+  std::vector<ReplaceFace>& faces = replace_faces_;
+  faces.clear();
   for (std::size_t i = 0; i < fresh.size(); ++i)
     for (int k = 0; k < 4; ++k) {
-      New f{outward_face(fresh[i], k), {}, int(i), k};
+      ReplaceFace f{outward_face(fresh[i], k), {}, int(i), k};
       f.sorted = f.key;
       std::sort(f.sorted.begin(), f.sorted.end());
       faces.push_back(f);
     }
-  std::sort(faces.begin(), faces.end(), [](const New& a, const New& b) { return a.sorted < b.sorted; });
-  std::vector<Tet> link(fresh.size(), {{0, 0, 0, 0}});  // >= 0: new tet index; < 0: -1 - outer index
+  std::sort(faces.begin(), faces.end(), [](const ReplaceFace& a, const ReplaceFace& b) { return a.sorted < b.sorted; });
+  std::vector<int>& by_key = replace_by_key_;
+  by_key.resize(outer.size());
+  for (std::size_t o = 0; o < outer.size(); ++o) by_key[o] = int(o);
+  std::sort(by_key.begin(), by_key.end(),
+            [&outer](int a, int b) { return outer[a].key < outer[b].key || (outer[a].key == outer[b].key && a < b); });
+  std::vector<Tet>& link = replace_link_;  // >= 0: new tet index; < 0: -1 - outer index
+  link.assign(fresh.size(), {{0, 0, 0, 0}});
   for (std::size_t x = 0; x < faces.size();) {
     std::size_t y = x + 1;
     while (y < faces.size() && faces[y].sorted == faces[x].sorted) ++y;
@@ -585,9 +620,17 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
       link[faces[x].i][faces[x].k] = faces[x + 1].i;
       link[faces[x + 1].i][faces[x + 1].k] = faces[x].i;
     } else if (y - x == 1) {
+      const Tri& key = faces[x].key;
+      auto it = std::upper_bound(by_key.begin(), by_key.end(), key,
+                                 [&outer](const Tri& k, int o) { return k < outer[o].key; });
       int found = -1;
-      for (std::size_t o = 0; o < outer.size(); ++o)
-        if (!outer[o].used && outer[o].key == faces[x].key) found = int(o);
+      while (it != by_key.begin() && outer[*(it - 1)].key == key) {
+        --it;
+        if (!outer[*it].used) {
+          found = *it;
+          break;
+        }
+      }
       if (found < 0) return false;
       outer[found].used = true;
       link[faces[x].i][faces[x].k] = -1 - found;
@@ -596,7 +639,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     }
     x = y;
   }
-  for (const Outer& o : outer)
+  for (const ReplaceOuter& o : outer)
     if (!o.used) return false;
   // Commit.
   forget(old);
@@ -610,7 +653,8 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     free_slots_.push_back(t);
     std::push_heap(free_slots_.begin(), free_slots_.end(), std::greater<int>());
   }
-  std::vector<int> id(fresh.size());
+  std::vector<int>& id = replace_id_;
+  id.resize(fresh.size());
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     if (!free_slots_.empty()) {
       std::pop_heap(free_slots_.begin(), free_slots_.end(), std::greater<int>());
@@ -641,7 +685,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
       if (l >= 0) {
         nb_[id[i]][k] = id[l];
       } else {
-        const Outer& o = outer[-1 - l];
+        const ReplaceOuter& o = outer[-1 - l];
         nb_[id[i]][k] = o.beyond;
         if (o.beyond >= 0) nb_[o.beyond][o.beyond_slot] = id[i];
       }
@@ -763,9 +807,6 @@ bool Improver::flip22(int t, int i, int j) {
   if (b1 >= int(bnd_.size()) || b2 >= int(bnd_.size())) return false;
   const int f1 = r_.mesh.boundary_facet[b1], f2 = r_.mesh.boundary_facet[b2];
   if (f1 < 0 || f1 != f2) return false;
-  if (CGAL::orientation(cgal::to_cgal(P_[a0]), cgal::to_cgal(P_[b0]), cgal::to_cgal(P_[d]), cgal::to_cgal(P_[e])) !=
-      CGAL::COPLANAR)
-    return false;
   // Outward, t's boundary face is (a, b, d) for (a, b, c, d) positive.
   const Tri B1 = outward_face(tets_[t], k);
   // Rotate so that B1 = (a, b, d): a, b the edge, d the apex.
@@ -779,6 +820,13 @@ bool Improver::flip22(int t, int i, int j) {
   fresh.assign({{{a, d, e, c}}, {{e, d, b, c}}});
   std::vector<int>& old = op_old_;
   old.assign({t, t2});
+  // The phase's time (issue 14; the same outcome): the min-sine rule that
+  // accept() applies, before the exact coplanarity test (costly on the
+  // exactly coplanar points it is there for); each refuses on its own.
+  if (!beats(worst_min_sine(fresh), worst_of(old))) return false;
+  if (CGAL::orientation(cgal::to_cgal(P_[a0]), cgal::to_cgal(P_[b0]), cgal::to_cgal(P_[d]), cgal::to_cgal(P_[e])) !=
+      CGAL::COPLANAR)
+    return false;
   double w;
   if (!accept(old, fresh, w) || !replace(old, fresh, {{b1, n1}, {b2, n2}})) return false;
   ++st_.flips22;
@@ -840,7 +888,13 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
     for (double alpha = 0.2 * lmin; alpha > 1e-4 * lmin; alpha *= 0.5) {
       const Point3 x = geometry::add(P_[v], geometry::mul(dir, alpha));
       const double w = worst_at(x);
-      if (!(w > current) || !move_if_valid(v, x, valid)) continue;
+      if (!(w > current)) continue;
+      // w > current: worst_at() computed every tet's min-sine at x (qx),
+      // which smooth()'s valid() reads instead of computing them again.
+      valid_q_ = &qx;
+      const bool moved = move_if_valid(v, x, valid);
+      valid_q_ = nullptr;
+      if (!moved) continue;
       current = w;
       q.swap(qx);
       better = true;
@@ -947,7 +1001,7 @@ bool Improver::smooth(int v) {
         return false;
       }
     }
-    return classes_change(S, before, tets) <= 0;
+    return classes_change(S, before, tets, valid_q_) <= 0;
   };
   const Point3 from = P_[v];
   if (polishing_ && polish_dihedral_) {

@@ -256,6 +256,25 @@ class Improver {
   /// The tets around v (its star), from vtet_; empty if v has none.
   void star(int v, std::vector<int>& out) const;
   bool ring(int t, int a, int b, std::vector<int>& tets, std::vector<int>& verts) const;
+  // ---- The phase's time (issue 14, h3): sets of tets or vertices with O(1)
+  // membership, emptied in O(1) (a stamp per slot), for star() and the class
+  // guard (they were linear searches, quadratic in a star's size; a vertex
+  // near a small input angle has stars of a hundred tets and more). They
+  // change no result: the same sets in the same order.
+  struct Marks {
+    std::vector<std::uint32_t> at;  ///< at[i] == stamp: i is in the set
+    std::vector<int> value;         ///< what put() stored with i
+    std::uint32_t stamp = 0;
+    /// Empties the set; slots 0 .. n-1 may be used.
+    void reset(std::size_t n) {
+      if (at.size() < n) at.resize(n, 0), value.resize(n, 0);
+      if (++stamp == 0) std::fill(at.begin(), at.end(), 0), stamp = 1;
+    }
+    bool has(int i) const { return at[i] == stamp; }
+    void put(int i, int val = 0) { at[i] = stamp, value[i] = val; }
+    /// The value put with i, or -1 when i is not in the set.
+    int get(int i) const { return at[i] == stamp ? value[i] : -1; }
+  };
   // The class guard (beyond the paper; classify.h's TetClassifier). A
   // change replaces the tets `old` by `fresh`; the classes it can change are
   // those of `fresh` and of the tets outside `old` at a vertex whose L_v it
@@ -265,10 +284,12 @@ class Improver {
   /// both at the current points (taken before a smoothing step moves one).
   struct ClassesBefore {
     int violations = 0;
-    /// The vertices of `old`, sorted (index() finds one), and per vertex
-    /// its shortest edge (squared) on old's tets and how many of old's tets
-    /// at it are of a bad shape.
+    /// The vertices of `old`, in the order of their first tet in `old`
+    /// (index() finds one through `slot`), and per vertex its shortest edge
+    /// (squared) on old's tets and how many of old's tets at it are of a bad
+    /// shape.
     std::vector<int> verts;
+    Marks slot;  ///< v -> its index in verts
     std::vector<double> inside;
     std::vector<int> bad_inside;
     /// classes_change()'s, per entry of verts, once computed (the tets
@@ -282,17 +303,17 @@ class Improver {
     mutable std::vector<std::vector<int>> bad_lists;  ///< the first bad_used are in use (the rest: spare capacity)
     mutable std::size_t bad_used = 0;
     /// The index of v in verts, or -1.
-    int index(int v) const {
-      const auto it = std::lower_bound(verts.begin(), verts.end(), v);
-      return it != verts.end() && *it == v ? int(it - verts.begin()) : -1;
-    }
+    int index(int v) const { return v >= 0 && v < int(slot.at.size()) ? slot.get(v) : -1; }
   };
   /// Fills b for `old` (b's vectors are reused: no allocation once they are
   /// large enough).
   void classes_before(const std::vector<int>& old, ClassesBefore& b) const;
   /// How many more violations there are when `old` is replaced by `fresh`
-  /// at the current points (negative: fewer; 0 without balls).
-  int classes_change(const std::vector<int>& old, const ClassesBefore& before, const std::vector<Tet>& fresh) const;
+  /// at the current points (negative: fewer; 0 without balls). `fresh_q`,
+  /// when given, holds min_sine() of each tet of fresh at the current
+  /// points, bit for bit (the caller has them; they are not computed again).
+  int classes_change(const std::vector<int>& old, const ClassesBefore& before, const std::vector<Tet>& fresh,
+                     const std::vector<double>* fresh_q = nullptr) const;
   /// The min-sine rule: a change whose new worst is worst_new may replace
   /// tets whose worst is worst_old when it is strictly greater; while
   /// fixing_ (a violation worked on), also when it is at least
@@ -403,25 +424,8 @@ class Improver {
   ImproveStats st_;
   bool cancelled_ = false;
 
-  // ---- The phase's time (issue 14, h3): sets of tets or vertices with O(1)
-  // membership, emptied in O(1) (a stamp per slot), for star() and the class
-  // guard (they were linear searches, quadratic in a star's size; a vertex
-  // near a small input angle has stars of a hundred tets and more). They
-  // change no result: the same sets in the same order.
-  struct Marks {
-    std::vector<std::uint32_t> at;  ///< at[i] == stamp: i is in the set
-    std::vector<int> value;         ///< what put() stored with i
-    std::uint32_t stamp = 0;
-    /// Empties the set; slots 0 .. n-1 may be used.
-    void reset(std::size_t n) {
-      if (at.size() < n) at.resize(n, 0), value.resize(n, 0);
-      if (++stamp == 0) std::fill(at.begin(), at.end(), 0), stamp = 1;
-    }
-    bool has(int i) const { return at[i] == stamp; }
-    void put(int i, int val = 0) { at[i] = stamp, value[i] = val; }
-    /// The value put with i, or -1 when i is not in the set.
-    int get(int i) const { return at[i] == stamp ? value[i] : -1; }
-  };
+  // ---- The phase's time (issue 14, h3): the sets of Marks (above) for star()
+  // and the class guard.
   mutable Marks star_marks_;  ///< star()'s
   mutable Marks set_marks_;   ///< shortest_at()'s skip, classes_change()'s and replace()'s old
   mutable Marks cav_marks_;   ///< the cavity of insert(), sphere_cavity() and boundary_cavity()
@@ -436,9 +440,16 @@ class Improver {
   mutable std::vector<std::pair<int, int>> changed_;
   mutable std::vector<int> shortest_star_, change_star_, bad_scratch_, learn_verts_;
   std::vector<double> learn_fresh_;
+  Marks learn_marks_;  ///< learn()'s vertices: v -> its index in learn_verts_
   /// smooth()'s star and its tets, ascend()'s qualities and order (neither
   /// runs inside another call of itself).
   std::vector<int> smooth_star_, ascend_order_;
+  /// While ascend() asks valid() about a trial point: the min-sines of its
+  /// `tets` there (ascend_qx_, every one computed), for smooth()'s class
+  /// guard; null otherwise (ascend_in_plane(), ascend_dihedral()).
+  const std::vector<double>* valid_q_ = nullptr;
+  /// accept()'s min-sines of the new tets, for its class guard.
+  mutable std::vector<double> accept_q_;
   std::vector<Tet> smooth_tets_;
   std::vector<double> ascend_q_, ascend_qx_;
   /// insert()'s candidates, cavity [0] and best cavity [1], their new tets,
@@ -452,6 +463,25 @@ class Improver {
   std::vector<Tet> insert_fresh_[2];
   std::vector<char> insert_known_;
   mutable std::vector<int> contract_star_u_;
+  /// replace()'s (kept to spare allocations; no result depends on what they
+  /// held before): the old set's outer faces (outward, canonical rotation;
+  /// what lies beyond each and its slot there; whether a new face took it),
+  /// their indices sorted by key, the new tets' faces (outward and sorted),
+  /// their links and slots, and the new tets' vertices (replace_marks_).
+  struct ReplaceOuter {
+    std::array<int, 3> key;
+    int beyond, beyond_slot;
+    bool used;
+  };
+  struct ReplaceFace {
+    std::array<int, 3> key, sorted;
+    int i, k;
+  };
+  std::vector<ReplaceOuter> replace_outer_;
+  std::vector<int> replace_by_key_, replace_id_;
+  std::vector<ReplaceFace> replace_faces_;
+  std::vector<Tet> replace_link_;
+  Marks replace_marks_;
   /// The smallest dihedral angle (degrees) of live tet t, kept from its last
   /// computation until forget_dihedral(t) (wherever q_[t] is set anew), so
   /// that mesh_worst() does not recompute every tet's angles on each call.
@@ -656,6 +686,24 @@ class Improver {
   /// vertices with u + 1).
   double contraction(Removal& r, int u, std::vector<Tet>& fresh,
                      std::vector<std::pair<int, std::array<int, 3>>>& boundary) const;
+  /// contraction() in two parts (the phase's time, issue 14; the same
+  /// outcome): contraction_bound() applies the cheap refusals (a fold
+  /// already there, the min-sine rules, the tets at vu) and returns the new
+  /// tets' worst min-sine, with `rule` 1 (strict) or 2 (relaxed), or
+  /// -HUGE_VAL; contraction_rest() then the link condition, the boundary
+  /// checks and accept() under that rule.
+  double contraction_bound(Removal& r, int u, int& rule) const;
+  double contraction_rest(Removal& r, int u, int rule, std::vector<Tet>& fresh,
+                          std::vector<std::pair<int, std::array<int, 3>>>& boundary) const;
+  struct ContractCandidate {
+    double worst;
+    int u, rule;
+  };
+  std::vector<ContractCandidate> contract_candidates_;  ///< contract_vertex()'s
+  /// removal()'s boundary edges at v (other end, facet), the ends along an
+  /// input edge and v's facets (kept to spare allocations).
+  mutable std::vector<std::pair<int, int>> removal_ends_;
+  mutable std::vector<int> removal_along_, removal_facets_;
   /// Applies an accepted contraction of r.v (fresh and boundary from
   /// contraction()); false when replace() refuses it.
   bool apply_contraction(const Removal& r, const std::vector<Tet>& fresh,

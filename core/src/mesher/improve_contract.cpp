@@ -138,12 +138,15 @@ bool Improver::removal(int v, Removal& r) const {
   } else {
     // The boundary edges at v, each with the facets of its two triangles; a
     // feature edge (two facets) is a subsegment of an input edge.
-    std::vector<std::pair<int, int>> ends;  // (other end, facet)
+    std::vector<std::pair<int, int>>& ends = removal_ends_;  // (other end, facet)
+    ends.clear();
     for (int b : bt)
       for (int x : bnd_[b])
         if (x != v) ends.push_back({x, label[b]});
     std::sort(ends.begin(), ends.end());
-    std::vector<int> along, facets;
+    std::vector<int>&along = removal_along_, &facets = removal_facets_;
+    along.clear();
+    facets.clear();
     for (std::size_t i = 0; i < ends.size(); i += 2) {
       // A closed surface: every boundary edge at v lies on exactly two
       // boundary triangles.
@@ -224,12 +227,9 @@ void Improver::contract_targets(int v, std::vector<int>& out) const {
   out.swap(r.targets);
 }
 
-double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
-                             std::vector<std::pair<int, Tri>>& boundary) const {
+double Improver::contraction_bound(Removal& r, int u, int& rule) const {
   const int v = r.v;
   const std::vector<int>&S = r.star, &bt = r.bnd;
-  fresh.clear();
-  boundary.clear();
   // The cheapest refusals first (each check refuses on its own, so their
   // order changes no result). The boundary: a triangle of a facet not seen
   // with the facet's sign (a fold already there) refuses every target off it.
@@ -241,6 +241,7 @@ double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
   const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
   bool strict = true, relaxed = !std::isnan(r.floor);
   int bad = r.bad_old, holding = 0;
+  double worst = HUGE_VAL;
   for (std::size_t k = 0; k < S.size(); ++k) {
     const std::size_t i = (r.witness + k) % S.size();
     Tet T = tets_[S[i]];
@@ -254,12 +255,25 @@ double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
     strict = strict && beats(m, r.worst_old);
     relaxed = relaxed && beats(m, r.floor);
     bad -= m < below;
+    worst = std::min(worst, m);
     if (!strict && !relaxed) {
       r.witness = i;
       return -HUGE_VAL;
     }
   }
   if (holding == 0 || holding == int(S.size())) return -HUGE_VAL;
+  // The relaxed rule also needs fewer tets under kContractCountDeg.
+  if (!strict && bad <= 0) return -HUGE_VAL;
+  rule = strict ? 1 : 2;
+  return worst;
+}
+
+double Improver::contraction_rest(Removal& r, int u, int rule, std::vector<Tet>& fresh,
+                                  std::vector<std::pair<int, Tri>>& boundary) const {
+  const int v = r.v;
+  const std::vector<int>&S = r.star, &bt = r.bnd;
+  fresh.clear();
+  boundary.clear();
   // The link condition: a vertex adjacent to both v and u is a vertex of a
   // tet holding edge vu (else the contraction would double an edge). The
   // star's vertices are marked (removal()); those of the tets at vu get u + 1.
@@ -296,14 +310,25 @@ double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
     if (projected_orientation(a, c, d, r.drop[i]) != r.sign[i]) return -HUGE_VAL;
     boundary.push_back({b, n});
   }
+  // The strict rule by the star's worst; the relaxed one (in a pass only):
+  // fewer tets under the target in the star, and every new tet better than
+  // the worst tet of the whole mesh. The floor in min-sine and in the
+  // smallest dihedral angle: a new tet whose min-sine beats sin(D) has its
+  // smallest dihedral above D. Where the strict rule holds, only it is
+  // asked: accept()'s other guards do not depend on the floor, so where
+  // they refuse the strict change they refuse the relaxed one too.
   double worst = -HUGE_VAL;
-  if (strict && accept(S, fresh, worst)) return worst;
-  // The relaxed rule (in a pass only): fewer tets under the target in the
-  // star, and every new tet better than the worst tet of the whole mesh.
-  // The floor in min-sine and in the smallest dihedral angle: a new tet
-  // whose min-sine beats sin(D) has its smallest dihedral above D.
-  if (!relaxed || bad <= 0 || !accept(S, fresh, worst, r.floor)) return -HUGE_VAL;
-  return worst;
+  if (rule == 1) return accept(S, fresh, worst) ? worst : -HUGE_VAL;
+  return accept(S, fresh, worst, r.floor) ? worst : -HUGE_VAL;
+}
+
+double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
+                             std::vector<std::pair<int, Tri>>& boundary) const {
+  fresh.clear();
+  boundary.clear();
+  int rule = 0;
+  if (contraction_bound(r, u, rule) == -HUGE_VAL) return -HUGE_VAL;
+  return contraction_rest(r, u, rule, fresh, boundary);
 }
 
 bool Improver::apply_contraction(const Removal& r, const std::vector<Tet>& fresh,
@@ -335,19 +360,27 @@ bool Improver::contract(int v, int u) {
 bool Improver::contract_vertex(int v) {
   Removal& r = contract_removal_;
   if (!removal(v, r)) return false;
-  double best = -HUGE_VAL;
-  int best_u = -1;
+  // The best accepted target: the largest worst min-sine of the new tets,
+  // the first in target order among equals. The phase's time (issue 14):
+  // the min-sine rule's bound of every target first (contraction_bound:
+  // the worst that accept() computes, bit for bit, for a target it accepts),
+  // then the other checks on the targets from the largest bound down, the
+  // first accepted being the best; no check's outcome depends on which
+  // targets were judged before (each was judged in turn to the end).
+  std::vector<ContractCandidate>& candidates = contract_candidates_;
+  candidates.clear();
+  for (std::size_t i = 0; i < r.targets.size(); ++i) {
+    int rule = 0;
+    const double w = contraction_bound(r, r.targets[i], rule);
+    if (w != -HUGE_VAL) candidates.push_back({w, r.targets[i], rule});
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const ContractCandidate& a, const ContractCandidate& b) { return a.worst > b.worst; });
   std::vector<Tet>& fresh = contract_fresh_[0];
   std::vector<std::pair<int, Tri>>& boundary = contract_boundary_[0];
-  for (int u : r.targets) {
-    const double w = contraction(r, u, fresh, boundary);
-    if (w > best) {
-      best = w, best_u = u;
-      contract_fresh_[0].swap(contract_fresh_[1]);
-      contract_boundary_[0].swap(contract_boundary_[1]);
-    }
-  }
-  return best_u >= 0 && apply_contraction(r, contract_fresh_[1], contract_boundary_[1]);
+  for (const ContractCandidate& c : candidates)
+    if (contraction_rest(r, c.u, c.rule, fresh, boundary) != -HUGE_VAL) return apply_contraction(r, fresh, boundary);
+  return false;
 }
 
 std::size_t Improver::contract_pass() {
