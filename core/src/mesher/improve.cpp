@@ -1305,6 +1305,7 @@ bool Improver::run() {
     }
     before = after;
   }
+  if (coarsen_on_) coarsen();                // improve_coarsen.cpp (when the passes reach kImproveTargetDeg)
   st_.polished = polish_on_ ? polish() : 0;  // improve_polish.cpp (off unless MeshOptions::polish)
   return !cancelled_;
 }

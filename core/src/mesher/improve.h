@@ -145,6 +145,42 @@ constexpr int kEdgeAndOthers[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
 /// 35.26 -> 45, with fewer or equal tets, none under 5 degrees and no
 /// violation.
 
+/// Coarsening (improve_coarsen.cpp, Improver::coarsen(); beyond the paper
+/// and beyond Stellar, issue 14's goal for slit.off: at least TetGen's 27.54
+/// degrees). It runs only when the passes leave the mesh's smallest
+/// dihedral angle D at kImproveTargetDeg or more (of the 21 models: box,
+/// slit, spike, edge_facet), at most kCoarsenRounds times: at most
+/// kCoarsenSweeps sweeps of contraction over every vertex, then the
+/// polish's second stage cut to ceil(T / kCoarsenPolishShare) changes (T:
+/// the live tets when the step begins). Why each value (slit's figures;
+/// BENCHMARKS.md, "Session 14 ..., h2"; all but the sweeps' with the sweeps
+/// unbounded):
+/// - rounds 3 and cut tets / 16 (session 13's experiment): 27.81 degrees; 2
+///   rounds gave 26.82, 4 gave 27.97; tets / 12 gave 25.47, / 24 26.55 (a
+///   local search: not monotone in the cut);
+/// - sweeps 2 a round: 28.62 degrees with 69 tets; 1 gave 28.81 with 104, 3
+///   gave 25.15, unbounded 27.81 with 74 for about 3% more of the step's time;
+/// - kCoarsenRiseDeg 1: a contraction may make its star worse, but every new
+///   tet's min-sine must beat min(the star's worst, sin(D + 1 degree)), so
+///   the tets it makes stay a degree clear of the mesh's smallest angle,
+///   which the polish then raises (0, the strict rule at the floor, gave
+///   26.45, 0.5 gave 27.18, 2 gave 24.99);
+/// - kCoarsenStallDeg 1.5: a round after the first runs only when the one
+///   before raised D by that much (the step's time, issue 14: the phase under
+///   REFINE + PUMP's time). Slit's first two rounds raise it by 4.46 and 2.19
+///   degrees; edge_facet's by 1.24 and 0.99, where its second and third
+///   rounds cost about as much as the first for 1.0 degree more; spike's by
+///   1.28;
+/// - kCoarsenWork 3: the work budget, operations tried per live tet when the
+///   step begins (a contraction of a vertex over all its targets; in the
+///   polish, a topological operation on a tet, a smoothing or a contraction
+///   of a vertex), whatever the clock, so that the step's work is bounded by
+///   the mesh's size: above what the four models' steps try (slit at most
+///   1.7 per tet, edge_facet 0.85), a bound for larger meshes, not a setting.
+constexpr int kCoarsenRounds = 3, kCoarsenSweeps = 2;
+constexpr std::size_t kCoarsenPolishShare = 16, kCoarsenWork = 3;
+constexpr double kCoarsenRiseDeg = 1, kCoarsenStallDeg = 1.5;
+
 /// The smallest sine of the six dihedral angles of tet abcd (each sine is
 /// 6 V l_ij / (|n_k| |n_l|), n_k the area normal of the face opposite k);
 /// negative when abcd is negatively oriented, 0 when a face is degenerate.
@@ -652,8 +688,12 @@ class Improver {
   void contract_targets(int v, std::vector<int>& out) const;
   /// Contracts edge (v, u) (u one of contract_targets(v)); true when accepted.
   bool contract(int v, int u);
-  /// The best accepted contraction of v over contract_targets(v).
-  bool contract_vertex(int v);
+  /// The best accepted contraction of v over contract_targets(v). With
+  /// floor_sine (not NaN; coarsen() only, beyond the phase's contract
+  /// rule): a contraction is also taken when every new tet's min-sine beats
+  /// min(the star's worst, floor_sine), whatever the count below
+  /// sin(kContractCountDeg), with all of accept()'s other guards.
+  bool contract_vertex(int v, double floor_sine = std::numeric_limits<double>::quiet_NaN());
   /// A pass over the Steiner vertices of the live tets below
   /// sin(kContractBelowDeg), worst tets first; returns the contractions made.
   std::size_t contract_pass();
@@ -675,6 +715,7 @@ class Improver {
     double worst_old = 0;     ///< the star's worst min-sine
     int bad_old = 0;          ///< the star's tets below sin(kContractCountDeg)
     double floor = 0;         ///< the relaxed rule's floor (NaN: strict rule only)
+    bool coarsen = false;     ///< the floor is coarsen()'s (no count below kContractCountDeg asked)
     std::size_t witness = 0;  ///< the star's tet that refused the last target (tried first)
   };
   /// Fills `r` for v; false when v may not be removed. Marks the star's
@@ -833,8 +874,14 @@ class Improver {
   /// admits the tet at once).
   double polish_floor_cos_ = 1, polish_floor_sine_ = 0;
   std::size_t polish_cap_ = 0;  ///< the live tets when polish() began
-  /// The rounds of one stage of polish(); returns the changes made.
-  std::size_t polish_rounds();
+  /// Forgets the retry stamps of the flips, the smoothing and the
+  /// contractions (the polish's second stage judges by another rule).
+  void forget_tries();
+  /// The rounds of one stage of polish(); returns the changes made. It
+  /// stops after max_changes changes, and, with `work`, when *work
+  /// operations were tried (each taken from it; coarsen()'s budget).
+  std::size_t polish_rounds(std::size_t max_changes = std::numeric_limits<std::size_t>::max(),
+                            std::size_t* work = nullptr);
   /// In polish()'s second stage: smoothing by ascend_dihedral(), and the
   /// other changes judged by the smallest dihedral angle (beats() asks only
   /// for the min-sine floor polish_sine_floor_, accept() for
@@ -864,6 +911,43 @@ class Improver {
   /// P_[v] at the best point; true when it moved. Only +, -, *, / and sqrt
   /// decide (native = wasm, as the rest of the polish).
   bool ascend_dihedral(int v, const std::vector<Tet>& tets, double lmin, const std::function<bool()>& valid, int axes);
+
+  // ---- Coarsening (improve_coarsen.cpp; beyond the paper and beyond
+  // Stellar, issue 14; the constants kCoarsen* above). Fewer vertices give
+  // the polish fewer and larger tets to raise: on slit.off the passes end at
+  // 20.16 degrees with 252 tets, every one of them above kContractBelowDeg,
+  // so contract_pass() tries none of its vertices. The step runs only when
+  // the passes leave the mesh's smallest dihedral angle D at
+  // kImproveTargetDeg or more; then each round is (1) sweeps of
+  // contract_vertex() with the coarsening floor over every vertex (worst
+  // star first; a vertex retried only after its star changed; until a sweep
+  // contracts nothing, at most kCoarsenSweeps), under the polish's floors (polishing_: no new tet's
+  // smallest dihedral angle at or below max(D, kPolishFloorDeg), the tets
+  // never more than when the step began, the class and max_size guards),
+  // and (2) the polish's second stage (polish_rounds() judged by the
+  // smallest dihedral angle, every retry stamp forgotten) cut to
+  // ceil(T / kCoarsenPolishShare) changes. Every operation tried counts
+  // against the budget kCoarsenWork times T; the step stops when it is
+  // spent. So D never drops, no tet under kPolishFloorDeg is made, the tets
+  // never grow, and the worst min-sine never drops (the phase's contract).
+ public:
+  /// The step (run() calls it after the passes, before the polish of
+  /// MeshOptions::polish, unless set_coarsen(false): the polish then starts
+  /// from the coarse mesh and only raises D, so polish = true never gives a
+  /// smaller angle than the default); returns the changes made (0, and
+  /// nothing changed, when D < kImproveTargetDeg).
+  std::size_t coarsen();
+  /// Whether run() ends with coarsen() (on by default; off: the tests call
+  /// it on the passes' mesh).
+  void set_coarsen(bool on) { coarsen_on_ = on; }
+
+ private:
+  bool coarsen_on_ = true;  ///< set_coarsen()
+  /// The sweeps of one round, each operation tried taken from `work`;
+  /// returns the contractions made.
+  std::size_t coarsen_sweeps(std::size_t& work);
+  /// coarsen_sweeps()'s retry stamps (the clock of the last failure).
+  std::vector<std::int64_t> coarsen_tried_;
 
   // ---- The polish's time (session 11, h3; improve_polish.cpp and
   // improve_dihedral.cpp): the same decisions, hence the same meshes, bit

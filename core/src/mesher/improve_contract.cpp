@@ -186,6 +186,7 @@ bool Improver::removal(int v, Removal& r) const {
   }
   r.floor = std::isnan(contract_floor_) ? contract_floor_
                                         : std::max(contract_floor_, std::sin(contract_dihedral_ * geometry::kPi / 180));
+  r.coarsen = false;
   r.witness = 0;
   r.drop.assign(bt.size(), 0);
   r.sign.assign(bt.size(), 0);
@@ -263,7 +264,7 @@ double Improver::contraction_bound(Removal& r, int u, int& rule) const {
   }
   if (holding == 0 || holding == int(S.size())) return -HUGE_VAL;
   // The relaxed rule also needs fewer tets under kContractCountDeg.
-  if (!strict && bad <= 0) return -HUGE_VAL;
+  if (!strict && bad <= 0 && !r.coarsen) return -HUGE_VAL;  // not asked by coarsen()'s floor
   rule = strict ? 1 : 2;
   return worst;
 }
@@ -357,9 +358,15 @@ bool Improver::contract(int v, int u) {
   return apply_contraction(r, fresh, boundary);
 }
 
-bool Improver::contract_vertex(int v) {
+bool Improver::contract_vertex(int v, double floor_sine) {
   Removal& r = contract_removal_;
   if (!removal(v, r)) return false;
+  if (!std::isnan(floor_sine)) {
+    // coarsen()'s floor (improve_coarsen.cpp): the star may get worse, not
+    // below min(its worst, floor_sine).
+    r.floor = std::min(r.worst_old, floor_sine);
+    r.coarsen = true;
+  }
   // The best accepted target: the largest worst min-sine of the new tets,
   // the first in target order among equals. The phase's time (issue 14):
   // the min-sine rule's bound of every target first (contraction_bound:

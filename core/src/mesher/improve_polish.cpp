@@ -137,20 +137,26 @@ std::size_t Improver::polish() {
   std::size_t n = polish_rounds();
   // The second stage: what failed by the min-sine rule may pass by the
   // angle's, so every stamp is forgotten.
-  std::fill(tried_.begin(), tried_.end(), -1);
-  std::fill(smoothed_.begin(), smoothed_.end(), -1);
-  std::fill(contract_tried_.begin(), contract_tried_.end(), -1);
+  forget_tries();
   polish_dihedral_ = true;
   n += polish_rounds();
   polish_dihedral_ = false;
   return n;
 }
 
-std::size_t Improver::polish_rounds() {
+void Improver::forget_tries() {
+  std::fill(tried_.begin(), tried_.end(), -1);
+  std::fill(smoothed_.begin(), smoothed_.end(), -1);
+  std::fill(contract_tried_.begin(), contract_tried_.end(), -1);
+}
+
+std::size_t Improver::polish_rounds(std::size_t max_changes, std::size_t* work) {
   std::size_t n = 0;
   double last = HUGE_VAL;
   int stalls = 0;
-  for (int round = 0; round < kPolishRounds && poll(); ++round) {
+  // coarsen()'s budget: every operation tried is taken from *work.
+  const auto spend = [work]() { return work == nullptr || (*work > 0 && (--*work, true)); };
+  for (int round = 0; round < kPolishRounds && n < max_changes && (work == nullptr || *work > 0) && poll(); ++round) {
     // C: the cosine of the mesh's smallest dihedral angle D; S = sin D.
     const double C = largest_mesh_cosine();
     if (C <= 0) break;  // every angle 90 degrees or more: nothing to raise
@@ -181,12 +187,13 @@ std::size_t Improver::polish_rounds() {
     set_polish_floor(C);
     for (const auto& entry : list) {
       const int t = entry.second;
-      if (!poll()) break;
+      if (n >= max_changes || (work != nullptr && *work == 0) || !poll()) break;
       if (!alive(t)) continue;
       // Each operation is retried only after a change touched the tet or the
       // vertex (the passes' own marks: the floor only rises, so what failed
       // would fail again).
       if (fresh_since(tried_[t], tets_[t])) {
+        if (!spend()) break;
         if (improve_tet(t)) {
           ++n;
           continue;
@@ -197,6 +204,7 @@ std::size_t Improver::polish_rounds() {
       bool done = false;
       for (int v : T) {
         if (done || !movable_axes(v) || (smoothed_[v] >= 0 && vtime_[v] <= smoothed_[v])) continue;
+        if (!spend()) break;
         if (smooth(v))
           done = true;
         else
@@ -206,6 +214,7 @@ std::size_t Improver::polish_rounds() {
         if (done || !alive(t)) continue;
         if (v >= int(contract_tried_.size())) contract_tried_.resize(P_.size(), -1);
         if (contract_tried_[v] >= 0 && v < int(vtime_.size()) && vtime_[v] <= contract_tried_[v]) continue;
+        if (!spend()) break;
         if (contract_vertex(v))
           done = true;
         else
