@@ -751,10 +751,11 @@ class Improver {
                          const std::vector<std::pair<int, std::array<int, 3>>>& boundary);
   mutable Marks contract_marks_;  ///< the star's vertices (removal, contraction)
   /// contract_vertex()'s (kept to spare allocations): the removal, and the
-  /// new tets and boundary of the target being judged [0] and of the best [1].
+  /// new tets and boundary of the target being judged (the first accepted
+  /// one is applied, so no second copy for the best is kept).
   Removal contract_removal_;
-  std::vector<Tet> contract_fresh_[2];
-  std::vector<std::pair<int, std::array<int, 3>>> contract_boundary_[2];
+  std::vector<Tet> contract_fresh_;
+  std::vector<std::pair<int, std::array<int, 3>>> contract_boundary_;
   /// Whether v lies on or inside the sphere of a vertex ball (cached in
   /// ball_point_ until v moves: smooth() clears its entry).
   bool on_vertex_ball(int v) const;

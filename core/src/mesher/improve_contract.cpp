@@ -383,8 +383,8 @@ bool Improver::contract_vertex(int v, double floor_sine) {
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const ContractCandidate& a, const ContractCandidate& b) { return a.worst > b.worst; });
-  std::vector<Tet>& fresh = contract_fresh_[0];
-  std::vector<std::pair<int, Tri>>& boundary = contract_boundary_[0];
+  std::vector<Tet>& fresh = contract_fresh_;
+  std::vector<std::pair<int, Tri>>& boundary = contract_boundary_;
   for (const ContractCandidate& c : candidates)
     if (contraction_rest(r, c.u, c.rule, fresh, boundary) != -HUGE_VAL) return apply_contraction(r, fresh, boundary);
   return false;
