@@ -240,7 +240,32 @@ function runWqmesh(model, name, improve = true) {
     timedOut: r.timedOut };
   if (r.status !== 0) row.note = failure(r);  // exit 3: stopped by the vertex limit, with its cause
   if (existsSync(out) && r.status === 0) row.m = measure(out, model, stats);
+  if (improve && s && r.status === 0) row.timeRuns = phaseRuns(model, name, s);
   return row;
+}
+
+// The time goal of issue 14 (the improve phase under REFINE + PUMP) on a model whose phases take milliseconds:
+// one run is at the mercy of a single preemption (a 1 ms phase read as 5 ms), so such a model is run again and
+// judged by the median ratio. A model whose REFINE + PUMP took at least REPEAT_BELOW_S keeps its one run.
+const REPEAT_BELOW_S = 0.5, REPEAT_RUNS = 9, REPEAT_BUDGET_S = 5;
+/**
+ * The phases of the default run `first` (its stats) and, when its REFINE + PUMP is under REPEAT_BELOW_S, of more
+ * runs of the same command (REPEAT_RUNS in all, or fewer once REPEAT_BUDGET_S of wall time is spent): a list of
+ * { improve, rp } in seconds, one per run.
+ */
+function phaseRuns(model, name, first) {
+  const pick = (s) => ({ improve: phase(s, 'improve'), rp: (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0) });
+  const runs = [pick(first)];
+  if (runs[0].improve === null || !(runs[0].rp < REPEAT_BELOW_S)) return runs;
+  const out = join(work, `${name}.repeat.mesh`), stats = join(work, `${name}.repeat.json`);
+  const t0 = performance.now();
+  while (runs.length < REPEAT_RUNS && performance.now() - t0 < 1000 * REPEAT_BUDGET_S) {
+    const r = spawnSync(cli, ['mesh', model, '-o', out, '--stats', stats, '--quiet',
+      '--max-vertices', String(opt.maxVertices)], { encoding: 'utf8', timeout: 1000 * opt.timeout });
+    if (r.status !== 0 || !existsSync(stats)) break;
+    runs.push(pick(JSON.parse(readFileSync(stats, 'utf8'))));
+  }
+  return runs;
 }
 
 function runWasm(model, name, native) {
@@ -393,7 +418,8 @@ function goals(results) {
     ? ' and the recount by `wqmesh measure --stats`' : ' (no recount in this binary)') + ' = 0; conforms: ' +
     `the stats say conforming and vol err <= ${VOLUME_TOLERANCE}; tets: at most 10% more than --no-improve` +
     (opt.baseline ? ' (the baseline\'s count beside it, a reference only)' : '') + '; time: the improve phase ' +
-    'under REFINE + PUMP (the stats\' phases).\n');
+    'under REFINE + PUMP (the stats\' phases; where REFINE + PUMP took under ' + `${REPEAT_BELOW_S} s, the median ` +
+    `ratio of up to ${REPEAT_RUNS} runs).\n`);
   const rows = [];
   const all = { w5: 0, wt: 0, t5: 0, tt: 0, n: 0 };
   let met = 0, judged = 0;
@@ -430,8 +456,16 @@ function goals(results) {
     const tets = p ? verdict(w.tets <= 1.1 * p.tets, `${w.tets}`, '<=', `1.1 x ${p.tets}${ref}`)
       : na(`${cliHas.improve ? 'no --no-improve mesh' : 'no improvement phase'}; ${w.tets} tets${ref}`);
     const imp = phase(s, 'improve'), rp = (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0);
-    const time = imp === null ? na('no improve phase in the stats')
-      : verdict(imp < rp, `${secs(imp)} s`, '<', `${secs(rp)} s`);
+    const runs = native.timeRuns || [];
+    let time;
+    if (imp === null) time = na('no improve phase in the stats');
+    else if (runs.length > 1) {
+      // Judged by the median ratio of the runs (phaseRuns): milliseconds are noise in one run.
+      const ratios = runs.map((x) => x.improve / x.rp).sort((a, b) => a - b);
+      const med = ratios[Math.floor(ratios.length / 2)];
+      time = verdict(med < 1, `median ${med.toFixed(2)}`, '<', `1, improve / (REFINE + PUMP) of ${ratios.length} ` +
+        `runs: ${ratios[0].toFixed(2)}-${ratios[ratios.length - 1].toFixed(2)}`);
+    } else time = verdict(imp < rp, `${secs(imp)} s`, '<', `${secs(rp)} s`);
     rows.push([model.name, num(model.phiM), ...[minDih, rate, ten, violations, conforms, tets, time].map(count)]);
   }
   table(['model', 'phi_m', 'min dih', '<5/1000', '>=10 (15)', 'violations', 'conforms', 'tets', 'time'], rows, 9);
