@@ -936,18 +936,20 @@ TEST(MesherSpeed, KeptSubsegmentTestsAgreeWithAFreshTest) {
 }
 
 // Subcomplex::segment_encroached_update (issue 15) answers from a
-// subsegment's record of its last test and the vertices inserted since: it
-// must say what a fresh full test says, for every subsegment with a record
-// (stale ones included), after every insertion of CONFORM and REFINE.
+// subsegment's record of its last test and of the vertices that queued it
+// since (Subsegment::ball_entered): it must say what a fresh full test says,
+// for every subsegment with a record (stale ones included), after every
+// insertion of CONFORM and REFINE.
 TEST(MesherSpeed, UpdatedSubsegmentTestsAgreeWithAFreshTest) {
   for_each_model(models(WQMESH_EXAMPLE_MODELS, {"slit.off", "thin_wedge.off"}), [](mesher::Mesher& m) {
     std::size_t updated = 0;
     auto check = [&] {
       const int n = m.triangulation().number_of_vertices();
       for_each_tested_subsegment(m, [&](const mesher::Subsegment& s, mesher::Subsegment& fresh) {
-        // The short way is taken (a record saying "not encroached", recent
-        // enough): counted, so that the test cannot pass without it.
-        updated += !s.encroached && !s.in_ball && n - int(s.tested_at) <= mesher::Subcomplex::kUpdateScan;
+        // The short way is taken (a record saying "not encroached", no
+        // vertex that queued it since counting for it): counted, so that the
+        // test cannot pass without it.
+        updated += !s.encroached && !s.in_ball && !s.ball_entered;
         mesher::Subsegment kept = s;
         ASSERT_EQ(m.subcomplex().segment_encroached_update(kept), m.subcomplex().segment_encroached(fresh))
             << "subsegment " << s.a << "-" << s.b << " tested at " << s.tested_at << " of " << n;

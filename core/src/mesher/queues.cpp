@@ -13,15 +13,16 @@
 
 namespace wqmesh::mesher {
 
-void Queues::queue(std::uint64_t k, const Subsegment& s) {
+void Queues::queue(std::uint64_t k, const Subsegment& s, int by) {
   segments_.push_back(k);
   s.queued_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
+  if (by >= 0 && !s.ball_entered && sub_.counts_for_segment(s, by)) s.ball_entered = true;
 }
 
-void Queues::push_segment(std::uint64_t k) { queue(k, sub_.subsegment(k)); }
+void Queues::push_segment(std::uint64_t k) { queue(k, sub_.subsegment(k), -1); }
 
 void Queues::fill(bool tets) {
-  for (const auto& [k, s] : sub_.subsegments()) queue(k, s);
+  for (const auto& [k, s] : sub_.subsegments()) queue(k, s, -1);
   std::sort(segments_.begin(), segments_.end());
   for (const Subfacet& h : sub_.subfacets()) queue_subfacet(h);
   if (tets) {
@@ -76,7 +77,7 @@ void Queues::enqueue_around(int v) {
   // split_encroached_subsegment's record of the last test relies on.
   for (int x : ring)
     for (std::uint64_t k : sub_.subsegments_at(x))
-      if (in_ring(int(k >> 32)) && in_ring(int(k & 0xFFFFFFFFu))) queue(k, sub_.subsegment(k));
+      if (in_ring(int(k >> 32)) && in_ring(int(k & 0xFFFFFFFFu))) queue(k, sub_.subsegment(k), v);
   // Subfacets: those with all vertices in the ring (new ones, and those the
   // vertex may encroach or remove from Del V).
   // `seen`: the triangles considered so far, sorted (a few dozen: a sorted
@@ -224,7 +225,7 @@ void Queues::enqueue_from_cavity(int v, const std::vector<Tet>& cavity) {
     std::sort(order.begin(), order.end());
     for (const auto& o : order) {
       const Subsegment& s = *segs[o.second];
-      queue(edge_key(s.a, s.b), s);
+      queue(edge_key(s.a, s.b), s, v);
     }
   }
   if (!tris.empty()) {
@@ -349,6 +350,7 @@ void Queues::split_encroached_subsegment(Inserter& inserter, std::uint64_t k, Ru
   if (s.tested_at == 0 || s.tested_at < s.queued_at) {
     s.encroached = sub_.segment_encroached_update(s);
     s.tested_at = static_cast<std::uint32_t>(tri_.number_of_vertices());
+    s.ball_entered = false;
   }
   if (!s.encroached) return;
   inserter.insert(sub_.splite(s), rule);

@@ -120,8 +120,11 @@ class Queues {
   std::unordered_map<Tri, int, TriHash> retries_;
   /// enqueue_around's ring of the new vertex, and its marks by vertex id
   /// (== stamp_ for the vertices of the current ring).
-  /// Queues subsegment s under its key k, noting when (Subsegment::queued_at).
-  void queue(std::uint64_t k, const Subsegment& s);
+  /// Queues subsegment s under its key k, noting when (Subsegment::queued_at)
+  /// and, when `by` is the vertex whose insertion queues it (-1: none, as at
+  /// the start of a phase and for a new subsegment), whether that vertex
+  /// counts for its encroachment (Subsegment::ball_entered).
+  void queue(std::uint64_t k, const Subsegment& s, int by);
   /// enqueue_around for a free vertex v inserted in REFINE whose cavity (the
   /// cells it destroyed) is known: the features are read from the cavity
   /// instead of the ring (queues.cpp says why that suffices).

@@ -189,6 +189,7 @@ void Subcomplex::insert_vertex(int id, const Insertion& ins, std::vector<std::ui
       left.db = right.da = ins.dir;
       left.cell = right.cell = nullptr;  // found on their first test
       left.tested_at = right.tested_at = 0;
+      left.ball_entered = right.ball_entered = false;
       new_segments.push_back(add_segment(left));
       new_segments.push_back(add_segment(right));
     }
@@ -216,44 +217,45 @@ bool in_diametric_ball(const Point3& x, const Point3& a, const Point3& b) {
 }
 }  // namespace
 
-bool Subcomplex::segment_encroached(const Subsegment& e) const {
+bool Subcomplex::counts_for_segment(const Subsegment& e, int x) const {
   if (e.in_ball) return false;
-  const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
   // The points on the sphere of a vertex ball do not encroach its shield
   // subsegments (a choice: at a sharp edge of dihedral angle below 45 degrees
   // the first shield subsegments of its two facets would otherwise encroach
   // each other after every SOS split, forever). What the shields are for,
   // the shield subfacets in Del V, rule 2 checks directly.
   const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
+  return verts_[x].ball != ball && in_diametric_ball(tri_.point(x), tri_.point(e.a), tri_.point(e.b));
+}
+
+bool Subcomplex::segment_encroached(const Subsegment& e) const {
+  if (e.in_ball) return false;
   std::vector<int> ring;
   if (!tri_.edge_ring(e.a, e.b, ring, e.cell)) return true;  // missing: a vertex lies in every circumball
   for (int x : ring)
-    if (x != kInfinite && verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b)) return true;
+    if (x != kInfinite && counts_for_segment(e, x)) return true;
   return false;
 }
 
 bool Subcomplex::segment_encroached_update(const Subsegment& e) const {
   // The ring of ab after insertions only is within its ring before them and
-  // the vertices inserted since: a new cell holding ab is a new vertex v
-  // joined to a face abx of the cavity's boundary, and abx was a face of a
-  // destroyed cell, which held ab, so x was in the ring. So when the last
-  // test found ab present with no vertex of its ring in its closed diametric
-  // ball, ab is encroached now iff it is missing or a vertex inserted since
-  // that is in its ring lies in the ball: with none of those in the ball
-  // (the common case, a distance each) the answer is "no" without the ring,
-  // whose circulation was most of CONFORM on mpi.off (a long subsegment
-  // beside a finely split edge has a ring of thousands of cells, tested
-  // again after every split nearby). Otherwise the full test: the same
-  // answer as segment_encroached in every case.
-  const int n = tri_.number_of_vertices();
+  // the vertices inserted since that queued ab: a new cell holding ab is a
+  // new vertex v joined to a face abx of the cavity's boundary, and abx was a
+  // face of a destroyed cell, which held ab, so x was in the ring, and ab
+  // was an edge of the cavity, so v's upkeep queued ab (Queues::
+  // enqueue_around, enqueue_from_cavity), noting in ball_entered whether v
+  // counts for ab. So when the last test found ab present with no vertex of
+  // its ring counting, ab is encroached now iff it is missing or one of the
+  // vertices that queued it since counts: with none of those counting (the
+  // common case) the answer is "no" without the ring, whose circulation was
+  // most of CONFORM on mpi.off (a long subsegment beside a finely split edge
+  // has a ring of thousands of cells, tested again after every split
+  // nearby), and without a scan of every vertex inserted since (up to 512 of
+  // them: 5% of REFINE on part.off, issue 15). Otherwise the full test: the
+  // same answer as segment_encroached in every case.
   if (e.in_ball) return false;
-  if (e.tested_at == 0 || e.encroached || n - static_cast<int>(e.tested_at) > kUpdateScan) return segment_encroached(e);
-  if (!tri_.is_edge(e.a, e.b, e.cell)) return true;  // missing: as segment_encroached
-  const Point3 &a = tri_.point(e.a), &b = tri_.point(e.b);
-  const int ball = e.sector >= 0 ? sectors_[e.sector].u : -2;
-  for (int x = static_cast<int>(e.tested_at); x < n; ++x)
-    if (verts_[x].ball != ball && in_diametric_ball(tri_.point(x), a, b)) return segment_encroached(e);
-  return false;
+  if (e.tested_at == 0 || e.encroached || e.ball_entered) return segment_encroached(e);
+  return !tri_.is_edge(e.a, e.b, e.cell);  // missing: as segment_encroached
 }
 
 bool Subcomplex::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }

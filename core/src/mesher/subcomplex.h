@@ -93,6 +93,13 @@ struct Subsegment {
   /// valid: the queue's repeats of ab cost a comparison.
   mutable std::uint32_t queued_at = 0, tested_at = 0;
   mutable bool encroached = false;
+  /// Beyond the paper (issue 15): whether a vertex inserted since the last
+  /// test, whose insertion queued ab, counts for ab's encroachment
+  /// (Subcomplex::counts_for_segment), noted when it queued ab
+  /// (Queues::queue) and cleared by the test. Every vertex that joined ab's
+  /// ring since the test queued ab, so while this is false no new vertex of
+  /// the ring lies in the ball (segment_encroached_update).
+  mutable bool ball_entered = false;
 };
 
 /// A subfacet: a triangle of facet f's planar Delaunay triangulation lying in f.
@@ -216,14 +223,19 @@ class Subcomplex {
   /// conflicts with starts without a point location; same answer.
   Insertion encroach(const Point3& c, int hint, CellRef start = nullptr) const;
   bool segment_encroached(const Subsegment& e) const;  ///< by a vertex of V (on or inside)
+  /// Whether vertex x, were it in the ring of e's edge, would make
+  /// segment_encroached(e) true: x lies on or inside e's diametric ball and
+  /// not on the sphere of the vertex ball e is a shield subsegment of (the
+  /// choice segment_encroached explains). O(1); false for an e in a ball.
+  bool counts_for_segment(const Subsegment& e, int x) const;
   /// segment_encroached(e), from e's record of its last test (tested_at,
-  /// encroached) when that said "not encroached" at most kUpdateScan
-  /// insertions ago: then only the edge's presence and the vertices inserted
-  /// since are tested (beyond the paper, issue 15; see subcomplex.cpp). The
-  /// record must be of a test of this V with only insertions since (CONFORM
-  /// and REFINE: V grows by unweighted insertions, none hidden).
+  /// encroached, ball_entered) when that said "not encroached" and no vertex
+  /// that queued e since counts for it: then only the edge's presence is
+  /// tested (beyond the paper, issue 15; see subcomplex.cpp). The record must
+  /// be of a test of this V with only insertions since (CONFORM and REFINE:
+  /// V grows by unweighted insertions, none hidden), each of which noted
+  /// itself in ball_entered when it queued e (Queues::queue).
   bool segment_encroached_update(const Subsegment& e) const;
-  static constexpr int kUpdateScan = 512;
   bool subfacet_present(const Subfacet& h) const;
   bool subfacet_encroached(const Subfacet& h) const;  ///< by a vertex (strictly inside)
   /// Subsegments and subfacets encroached by a point, among the features of
