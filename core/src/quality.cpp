@@ -140,7 +140,59 @@ double dihedral_deg(const ScaledTet& s, int i) {
   return angle_deg(nk, nl);
 }
 
+/// The measures of the scaled tet that R/l needs: det (6 times its signed
+/// volume), the shortest and longest edge, the circumradius and the radius
+/// (the orthoradius with weights `w`, else the circumradius), scaled. The one
+/// computation of tet_quality and tet_radius_edge, so they agree bit for bit.
+struct RadiusPart {
+  double det, shortest_edge, longest_edge, circumradius, radius;
+};
+
+RadiusPart radius_part(const ScaledTet& s, const std::array<double, 4>* w) {
+  RadiusPart p;
+  const int k = s.k;
+  const Point3 &e1 = s.edge[0], &e2 = s.edge[1], &e3 = s.edge[2];
+  // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
+  p.det = dot(e1, cross(e2, e3));
+  p.shortest_edge = kInf;
+  p.longest_edge = 0;
+  for (int i = 0; i < 6; ++i) {
+    const double len = norm(s.edge[i]);
+    if (len < p.shortest_edge) p.shortest_edge = len;
+    if (len > p.longest_edge) p.longest_edge = len;
+  }
+  // Circumradius and orthoradius (section 3), scaled. A zero volume has no
+  // (finite) circumsphere: the radius is then +infinity.
+  p.circumradius = kInf;
+  p.radius = kInf;
+  const double det = p.det;
+  if (det != 0) {
+    const double r1 = dot(e1, e1), r2 = dot(e2, e2), r3 = dot(e3, e3);
+    p.circumradius = norm(orthocenter_offset(e1, e2, e3, det, r1, r2, r3));
+    p.radius = p.circumradius;
+    if (w != nullptr) {
+      // Weights are squared radii: scaled by 2^(-2k).
+      std::array<double, 4> W;
+      for (int i = 0; i < 4; ++i) W[i] = std::ldexp((*w)[i], -2 * k);
+      const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0], r3 - W[3] + W[0]);
+      // Z^2 = |z - p_0|^2 - W_0, the weight of the orthosphere; may be < 0.
+      const double z2 = dot(x, x) - W[0];
+      p.radius = z2 > 0 ? std::sqrt(z2) : 0.0;
+    }
+  }
+  return p;
+}
+
+/// rho = R / L (section 3), scale-free. A zero shortest edge gives +infinity.
+double radius_edge_of(const RadiusPart& p) { return p.shortest_edge > 0 ? p.radius / p.shortest_edge : kInf; }
+
 }  // namespace
+
+double tet_radius_edge(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                       const std::array<double, 4>* w) {
+  const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
+  return radius_edge_of(radius_part(s, w));
+}
 
 double tet_volume_scaled(const Point3& a, const Point3& b, const Point3& c, const Point3& d, int& exponent) {
   const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
@@ -173,43 +225,21 @@ TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const 
   TetQuality q;
   const ScaledTet s(std::array<const Point3*, 4>{{&a, &b, &c, &d}});
   const int k = s.k;
-  const Point3 &e1 = s.edge[0], &e2 = s.edge[1], &e3 = s.edge[2];
   auto vec = [&](int i, int j) { return edge_vector(s, i, j); };
 
-  // Signed volume, > 0 for the positive (right-handed) orientation of TetMesh.
-  const double det = dot(e1, cross(e2, e3));
+  // The signed volume (det / 6), the edges, the circumradius and the radius
+  // (radius_part, shared with tet_radius_edge).
+  const RadiusPart rp = radius_part(s, w);
+  const double det = rp.det;
   q.volume = std::ldexp(det / 6.0, 3 * k);
-
-  q.shortest_edge = kInf;
-  q.longest_edge = 0;
-  for (int i = 0; i < 6; ++i) {
-    const double len = norm(s.edge[i]);
-    if (len < q.shortest_edge) q.shortest_edge = len;
-    if (len > q.longest_edge) q.longest_edge = len;
-  }
+  q.shortest_edge = rp.shortest_edge;
+  q.longest_edge = rp.longest_edge;
   const double l = q.shortest_edge;  // scaled
-
-  // Circumradius and orthoradius (section 3), scaled. A zero volume has no
-  // (finite) circumsphere: the radius is then +infinity.
-  double circumradius = kInf, radius = kInf;
-  if (det != 0) {
-    const double r1 = dot(e1, e1), r2 = dot(e2, e2), r3 = dot(e3, e3);
-    circumradius = norm(orthocenter_offset(e1, e2, e3, det, r1, r2, r3));
-    radius = circumradius;
-    if (w != nullptr) {
-      // Weights are squared radii: scaled by 2^(-2k).
-      std::array<double, 4> W;
-      for (int i = 0; i < 4; ++i) W[i] = std::ldexp((*w)[i], -2 * k);
-      const Point3 x = orthocenter_offset(e1, e2, e3, det, r1 - W[1] + W[0], r2 - W[2] + W[0], r3 - W[3] + W[0]);
-      // Z^2 = |z - p_0|^2 - W_0, the weight of the orthosphere; may be < 0.
-      const double z2 = dot(x, x) - W[0];
-      radius = z2 > 0 ? std::sqrt(z2) : 0.0;
-    }
-  }
+  const double circumradius = rp.circumradius, radius = rp.radius;
 
   // rho = R / L and sigma = vol / L^3 (section 3), both scale-free. A zero
   // shortest edge gives rho = +infinity and sigma = 0.
-  q.radius_edge = l > 0 ? radius / l : kInf;
+  q.radius_edge = radius_edge_of(rp);
   q.normalized_volume = l > 0 ? (det / 6.0) / (l * l * l) : 0.0;
 
   // Faces opposite vertex 0, 1, 2, 3, each with its corners in this order.

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <random>
 #include <set>
 
 #include "cgal_types.h"
@@ -1364,6 +1365,67 @@ TEST(Improve, EveryVertexsShortestEdgeIsCurrentAfterEachChange) {
   EXPECT_GT(changes, 0u);
   EXPECT_GT(contractions, 0u);
   EXPECT_GT(inserted, 0u);
+}
+
+// The skip rule of quality_measures(), mesh_worst() and the contraction's
+// floor test (issue 14, the phase's time): a tet whose min-sine is above
+// sine_above(deg) has its smallest dihedral angle above deg, as
+// tet_min_dihedral_deg computes it; probed at the tet's own angle (where no
+// min-sine may pass) and at fixed degrees, on the tets of the models before
+// the phase (slivers, caps and good tets) and on random ones. And the
+// measures that skip by it are those of a recount of every live tet.
+TEST(Improve, AMinSineAboveSineAboveShowsTheSmallestAngleAbove) {
+  std::vector<std::array<Point3, 4>> tets;
+  std::vector<std::string> files = models();
+  for (const char* n : {"slit-1.off", "wedge-1.off"})
+    if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/" + n))
+      files.push_back(std::string(WQMESH_SHARED_MODELS) + "/" + n);
+  ASSERT_FALSE(files.empty());
+  auto recount = [](const Improver& im) {
+    Improver::QualityMeasures m;
+    for (std::size_t t = 0; t < im.tets().size(); ++t) {
+      if (!im.alive(int(t))) continue;
+      const auto& T = im.tets()[t];
+      const auto& P = im.points();
+      const double d = tet_min_dihedral_deg(P[T[0]], P[T[1]], P[T[2]], P[T[3]]);
+      m.smallest_dihedral_deg = std::min(m.smallest_dihedral_deg, d);
+      m.under_count_deg += d < mesher::kQualityCountDeg;
+    }
+    return m;
+  };
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
+    for (const auto& T : im.tets())
+      tets.push_back({{im.points()[T[0]], im.points()[T[1]], im.points()[T[2]], im.points()[T[3]]}});
+    for (int stage = 0; stage < 2; ++stage) {
+      const Improver::QualityMeasures m = im.quality_measures(), all = recount(im);
+      EXPECT_EQ(m.smallest_dihedral_deg, all.smallest_dihedral_deg) << "stage " << stage;
+      EXPECT_EQ(m.under_count_deg, all.under_count_deg) << "stage " << stage;
+      if (stage == 0) ASSERT_TRUE(im.run());
+    }
+  }
+  std::mt19937 rng(15);
+  std::uniform_real_distribution<double> coord(-1, 1);
+  for (int i = 0; i < 20000; ++i) {
+    std::array<Point3, 4> p;
+    for (auto& x : p) x = Point3{{coord(rng), coord(rng), i % 2 ? 1e-3 * coord(rng) : coord(rng)}};
+    if (tet_orientation(p[0], p[1], p[2], p[3]) < 0) std::swap(p[0], p[1]);
+    tets.push_back(p);
+  }
+  std::size_t shown = 0, probes = 0;
+  for (const auto& p : tets) {
+    const double q = min_sine(p[0], p[1], p[2], p[3]), d = tet_min_dihedral_deg(p[0], p[1], p[2], p[3]);
+    for (double deg : {d, std::nextafter(d, 0.0), 0.5, 1.0, 1.3291251279648848, 5.0, 10.0, 20.0, 40.0, 59.0}) {
+      ++probes;
+      if (!(q > Improver::sine_above(deg))) continue;
+      ++shown;
+      ASSERT_GT(d, deg) << "min-sine " << q << ", probe " << deg;
+    }
+  }
+  // Most probes at fixed degrees are decided by the min-sine alone.
+  EXPECT_GT(shown, probes / 3);
 }
 
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {

@@ -299,6 +299,23 @@ TEST(Quality, MinDihedralAloneIsTetQualitysBitForBit) {
   EXPECT_GT(small, 50);  // the nearly flat ones are slivers
 }
 
+TEST(Quality, RadiusEdgeAloneIsTetQualitysBitForBit) {
+  // classify_tets' weighted view keeps only R/l: tet_radius_edge gives
+  // tet_quality's double, with and without weights (compared by ==).
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> weight(0, 0.5);
+  int weighted = 0;
+  for (const auto& p : awkward_tets()) {
+    EXPECT_EQ(tet_radius_edge(p[0], p[1], p[2], p[3]), tet_quality(p[0], p[1], p[2], p[3]).radius_edge);
+    const std::array<double, 4> w{{weight(rng), weight(rng), weight(rng), weight(rng)}};
+    const double rho = tet_radius_edge(p[0], p[1], p[2], p[3], &w),
+                 full = tet_quality(p[0], p[1], p[2], p[3], &w).radius_edge;
+    EXPECT_TRUE(rho == full || (std::isnan(rho) && std::isnan(full))) << rho << " " << full;
+    weighted += std::isfinite(full) && full != tet_quality(p[0], p[1], p[2], p[3]).radius_edge;
+  }
+  EXPECT_GT(weighted, 50);  // the weights moved R/l on most of them
+}
+
 TEST(Quality, MinDihedralUpToABoundIsTheFullMeasureAtOrBelowIt) {
   // Rule 7's scan (issue 15) skips the angles certainly above theta: at or
   // below the bound the answer is tet_min_dihedral_deg's double, above it

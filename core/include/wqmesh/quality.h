@@ -50,6 +50,12 @@ struct TetQuality {
 TetQuality tet_quality(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
                        const std::array<double, 4>* w = nullptr);
 
+/// tet_quality(a, b, c, d, w).radius_edge, bit for bit (the same
+/// arithmetic), without the other measures (its angles above all): for the
+/// weighted view of classify_tets, which keeps only R/l.
+double tet_radius_edge(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
+                       const std::array<double, 4>* w = nullptr);
+
 /// tet_quality(a, b, c, d).min_dihedral_deg, bit for bit (the same
 /// arithmetic), without the other measures: for the mesher's sliver scans.
 double tet_min_dihedral_deg(const Point3& a, const Point3& b, const Point3& c, const Point3& d);

@@ -146,13 +146,13 @@ bool classify_tets(MeshResult& r, const ProtectingBalls& balls, const MeshOption
     for (const TetQuality& q : r.quality) r.orthoradius_edge.push_back(q.radius_edge);
   } else {
     // mesh_quality(mesh, keep_going, true)'s radius_edge, one tet at a time
-    // (not a second whole-mesh TetQuality vector).
+    // (not a second whole-mesh TetQuality vector), by tet_radius_edge (the
+    // same value without the angles; the phase's time, issue 14).
     for (const auto& t : mesh.tets) {
       if (keep_going && !keep_going()) return false;
       const std::array<double, 4> w{{mesh.weights[t[0]], mesh.weights[t[1]], mesh.weights[t[2]], mesh.weights[t[3]]}};
       r.orthoradius_edge.push_back(
-          tet_quality(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], &w)
-              .radius_edge);
+          tet_radius_edge(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]], &w));
     }
   }
   for (double rho : r.orthoradius_edge) r.orthoradius_skinny += rho > opt.rho0;

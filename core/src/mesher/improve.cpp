@@ -166,6 +166,9 @@ void Improver::set_classes(const ProtectingBalls* balls, double theta_deg) {
   classifier_ = std::make_unique<TetClassifier>(*balls, rho_, theta_deg);
   L2_.assign(P_.size(), HUGE_VAL);
   bad_at_.assign(P_.size(), 0);
+  l2_at_.assign(P_.size(), 0);
+  class_.clear();
+  class_at_.clear();
   shape_.assign(tets_.size(), TetClassifier::Shape::good);
   std::vector<int> live;
   for (std::size_t t = 0; t < tets_.size(); ++t)
@@ -272,8 +275,16 @@ bool Improver::ring(int t, int a, int b, std::vector<int>& ts, std::vector<int>&
 TetClass Improver::tet_class(int t) const {
   if (!classifier_ || !alive(t)) return TetClass::good;
   const Tet& T = tets_[t];
-  return classifier_->classify(shape_[t], P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
-                               {{L2_[T[0]], L2_[T[1]], L2_[T[2]], L2_[T[3]]}});
+  if (class_.size() < tets_.size()) class_.resize(tets_.size(), -1), class_at_.resize(tets_.size(), 0);
+  const std::int64_t at = class_at_[t];
+  if (class_[t] >= 0 && l2_at_[T[0]] <= at && l2_at_[T[1]] <= at && l2_at_[T[2]] <= at && l2_at_[T[3]] <= at) {
+    return TetClass(class_[t]);
+  }
+  const TetClass c = classifier_->classify(shape_[t], P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
+                                           {{L2_[T[0]], L2_[T[1]], L2_[T[2]], L2_[T[3]]}});
+  class_[t] = static_cast<signed char>(c);
+  class_at_[t] = l2_clock_;
+  return c;
 }
 
 double Improver::shortest_at(int v, const std::vector<int>& skip) const {
@@ -311,10 +322,11 @@ void Improver::forget(const std::vector<int>& ids) {
   }
 }
 
-void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from) {
+void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from, bool judged) {
   if (!classifier_) return;
   if (shape_.size() < tets_.size()) shape_.resize(tets_.size(), TetClassifier::Shape::good);
-  if (L2_.size() < P_.size()) L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0);
+  if (L2_.size() < P_.size())
+    L2_.resize(P_.size(), HUGE_VAL), bad_at_.resize(P_.size(), 0), l2_at_.resize(P_.size(), 0);
   // The vertices of ids in the order met (learn_marks_: v -> its index;
   // the phase's time, issue 14: they were sorted, and searched below; each
   // vertex's L_v is its own, so their order changes no value).
@@ -324,6 +336,7 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   for (int t : ids) {
     const Tet& T = tets_[t];
     shape_[t] = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q_[t]);
+    if (t < int(class_.size())) class_[t] = -1;  // its shape or points changed
     for (int v : T) {
       bad_at_[v] += shape_[t] != TetClassifier::Shape::good;
       if (!learn_marks_.has(v)) {
@@ -336,7 +349,20 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   forgot_ = false;
   if (moved < 0) {
     if (!forgot) {
-      for (int v : verts) L2_[v] = shortest_at(v);
+      for (int v : verts) set_l2(v, shortest_at(v));
+      return;
+    }
+    // After replace() of a change its accept() just judged: classes_change()
+    // computed L_v after it for every vertex of the new tets (after_, found
+    // through vert_marks_), by the rules below and one more (when L_v is an
+    // old edge's, v's edges outside `old` are at least L_v: a new edge at
+    // most L_v is L_v after); each is the minimum over v's new star, as
+    // shortest_at() gives it (the phase's time, issue 14: the star walks of
+    // the vertices whose L_v was an old edge's).
+    if (judged && std::all_of(verts.begin(), verts.end(), [&](int v) { return vert_marks_.has(v); })) {
+      for (int v : verts) {
+        set_l2(v, after_[std::size_t(vert_marks_.get(v))].second);
+      }
       return;
     }
     // After replace() (forget(old), then learn(new); improve.h, "The
@@ -353,9 +379,9 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
     for (std::size_t i = 0; i < verts.size(); ++i) {
       const int v = verts[i], at = forgot_marks_.get(v);
       if (at >= 0 && L2_[v] < forgot_l2_[at])
-        L2_[v] = std::min(L2_[v], fresh[i]);  // its shortest edge lies outside the old tets: it stays
+        set_l2(v, std::min(L2_[v], fresh[i]));  // its shortest edge lies outside the old tets: it stays
       else
-        L2_[v] = shortest_at(v);
+        set_l2(v, shortest_at(v));
     }
     return;
   }
@@ -366,13 +392,13 @@ void Improver::learn(const std::vector<int>& ids, int moved, const Point3& from)
   for (int u : verts) {
     if (u == moved) continue;
     const double was = geometry::dist2(from, P_[u]);
-    L2_[u] = L2_[u] < was ? std::min(L2_[u], geometry::dist2(P_[moved], P_[u])) : shortest_at(u);
+    set_l2(u, L2_[u] < was ? std::min(L2_[u], geometry::dist2(P_[moved], P_[u])) : shortest_at(u));
   }
   double l2 = HUGE_VAL;
   for (int t : ids)
     for (int u : tets_[t])
       if (u != moved) l2 = std::min(l2, geometry::dist2(P_[u], P_[moved]));
-  L2_[moved] = l2;
+  set_l2(moved, l2);
 }
 
 void Improver::classes_before(const std::vector<int>& old, ClassesBefore& b) const {
@@ -554,7 +580,7 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
 }
 
 bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
-                       const std::vector<std::pair<int, std::array<int, 3>>>& boundary, int vanishing) {
+                       const std::vector<std::pair<int, std::array<int, 3>>>& boundary, int vanishing, bool judged) {
   // The outer faces of the old set, outward, with what lies beyond each.
   std::vector<ReplaceOuter>& outer = replace_outer_;
   outer.clear();
@@ -690,7 +716,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
         if (o.beyond >= 0) nb_[o.beyond][o.beyond_slot] = id[i];
       }
     }
-  learn(id);
+  learn(id, -1, {}, judged);
   return true;
 }
 
@@ -709,7 +735,7 @@ bool Improver::flip23(int t, int k) {
   std::vector<int>& old = op_old_;
   old.assign({t, n});
   double w;
-  if (!accept(old, fresh, w) || !replace(old, fresh)) return false;
+  if (!accept(old, fresh, w) || !replace(old, fresh, {}, -1, true)) return false;
   ++st_.flips23;
   return true;
 }
@@ -774,7 +800,7 @@ bool Improver::remove_edge(int t, int i, int j) {
     todo.push_back({y, z});
   }
   double w;
-  if (!accept(ts, fresh, w) || !replace(ts, fresh)) return false;
+  if (!accept(ts, fresh, w) || !replace(ts, fresh, {}, -1, true)) return false;
   if (m == 3)
     ++st_.flips32;
   else if (m == 4)
@@ -828,7 +854,7 @@ bool Improver::flip22(int t, int i, int j) {
       CGAL::COPLANAR)
     return false;
   double w;
-  if (!accept(old, fresh, w) || !replace(old, fresh, {{b1, n1}, {b2, n2}})) return false;
+  if (!accept(old, fresh, w) || !replace(old, fresh, {{b1, n1}, {b2, n2}}, -1, true)) return false;
   ++st_.flips22;
   return true;
 }
@@ -915,12 +941,30 @@ bool Improver::move_if_valid(int v, const Point3& x, const std::function<bool()>
 
 Improver::MeshWorst Improver::mesh_worst() const {
   MeshWorst w{HUGE_VAL, 180};
+  int first = -1;  // a tet of the smallest min-sine
   for (std::size_t t = 0; t < tets_.size(); ++t)
     if (alive(int(t))) {
       w.sine = std::min(w.sine, q_[t]);
-      w.dihedral_deg = std::min(w.dihedral_deg, dihedral(int(t)));
+      if (first < 0 || q_[t] < q_[first]) first = int(t);
+    }
+  if (first < 0) return w;
+  // The phase's time (issue 14): the smallest dihedral(t) over the live
+  // tets, from the tet of the smallest min-sine on; a tet whose min-sine
+  // shows its angle above the smallest so far (sine_above) cannot lower it
+  // and is not measured. The same minimum (std::min skips a NaN, as before).
+  w.dihedral_deg = std::min(w.dihedral_deg, dihedral(first));
+  double sine = sine_above(w.dihedral_deg);
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t)) && !dihedral_above(int(t), w.dihedral_deg, sine)) {
+      const double d = std::min(w.dihedral_deg, dihedral(int(t)));
+      if (d < w.dihedral_deg) w.dihedral_deg = d, sine = sine_above(d);
     }
   return w;
+}
+
+double Improver::sine_above(double deg) {
+  if (!(deg < 60)) return HUGE_VAL;
+  return std::sin(std::max(deg, 0.0) * (1 + 1e-6) * geometry::kPi / 180) * (1 + 1e-6) + 1e-12;
 }
 
 double Improver::dihedral(int t) const {
@@ -1202,11 +1246,23 @@ std::size_t Improver::fix_violations() {
 
 Improver::QualityMeasures Improver::quality_measures() const {
   QualityMeasures m;
+  // The phase's time (issue 14): a tet whose min-sine shows its smallest
+  // dihedral angle above both kQualityCountDeg and the smallest so far
+  // (sine_above) changes neither measure and is not measured; the smallest
+  // starts at the tet of the smallest min-sine. The same measures.
+  int first = -1;
   for (std::size_t t = 0; t < tets_.size(); ++t)
-    if (alive(int(t))) {
+    if (alive(int(t)) && (first < 0 || q_[t] < q_[first])) first = int(t);
+  if (first < 0) return m;
+  m.smallest_dihedral_deg = std::min(m.smallest_dihedral_deg, dihedral(first));
+  double above = std::max(m.smallest_dihedral_deg, kQualityCountDeg), sine = sine_above(above);
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    if (alive(int(t)) && !dihedral_above(int(t), above, sine)) {
       const double d = dihedral(int(t));
       m.smallest_dihedral_deg = std::min(m.smallest_dihedral_deg, d);
       m.under_count_deg += d < kQualityCountDeg;
+      if (std::max(m.smallest_dihedral_deg, kQualityCountDeg) < above)
+        above = std::max(m.smallest_dihedral_deg, kQualityCountDeg), sine = sine_above(above);
     }
   return m;
 }

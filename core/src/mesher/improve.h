@@ -229,6 +229,17 @@ class Improver {
   /// smallest dihedral angle rises or the count under kQualityCountDeg falls
   /// (strictly; either is enough).
   static bool pass_improves(const QualityMeasures& before, const QualityMeasures& after);
+  /// The phase's time (issue 14): a min-sine that shows, without the six
+  /// angles, that a tet's smallest dihedral angle is above `deg` degrees: a
+  /// tet whose min_sine() is above sine_above(deg) has tet_min_dihedral_deg()
+  /// above deg (+infinity when no min-sine shows it: deg of 60 or more). The
+  /// smallest dihedral angle theta of a tet is below 90 degrees and every
+  /// dihedral angle's sine is at least the min-sine q, so theta >= asin(q);
+  /// the margins (1e-6 relative on the angle and on the sine, 1e-12 absolute)
+  /// exceed the rounding of min_sine() and of tet_min_dihedral_deg() on any
+  /// tet whose min-sine is above 1e-12. quality_measures(), mesh_worst() and
+  /// the contraction's floor test skip the angles of such tets.
+  static double sine_above(double deg);
   /// Writes the mesh back into r (live tets and boundary triangles, compact)
   /// and fills r.improve's operation counts and passes.
   void finish();
@@ -284,9 +295,14 @@ class Improver {
   /// the old set's outer faces; `boundary` lists replacement boundary
   /// triangles as (index, triangle), a triangle {-1, -1, -1} deletes that
   /// one); false, and nothing changed, when the faces do not match (every
-  /// vertex of the old set must stay but `vanishing`).
+  /// vertex of the old set must stay but `vanishing`). `judged`: the last
+  /// call of accept() or classes_change() was an accept() of exactly this
+  /// change (the same old and fresh, at the same points) that returned true;
+  /// the L_v after it that its class guard computed are then taken (after_;
+  /// the phase's time, issue 14: the same values as learn()'s star walks).
   bool replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
-               const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {}, int vanishing = -1);
+               const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {}, int vanishing = -1,
+               bool judged = false);
   bool has(int t, int v) const;
   int slot(int t, int v) const;
   /// The tets around v (its star), from vtet_; empty if v has none.
@@ -379,8 +395,10 @@ class Improver {
   /// `moved`, the only one that changed place (from `from`; smooth()).
   /// forget() also records, per vertex of `ids`, its shortest edge on them
   /// (forgot_l2_); the next learn() without `moved` reads it (see below).
+  /// With `judged` (replace()'s, after forget()), L_v of ids' vertices is
+  /// read from after_ (classes_change()'s, for these new tets) instead.
   void forget(const std::vector<int>& ids);
-  void learn(const std::vector<int>& ids, int moved = -1, const Point3& from = {});
+  void learn(const std::vector<int>& ids, int moved = -1, const Point3& from = {}, bool judged = false);
   /// The max_size guard: T's circumradius is at most size_cap (<= 0: none).
   bool admissible(const Tet& T, double size_cap) const;
   bool poll();
@@ -427,6 +445,20 @@ class Improver {
   std::vector<double> L2_;
   std::vector<TetClassifier::Shape> shape_;
   std::vector<int> bad_at_;
+  /// The phase's time (issue 14): tet_class(t) kept from its last
+  /// computation. A class depends on the tet's shape and points (learn()
+  /// forgets the kept class of each tet it is given: the new tets of
+  /// replace(), the star of a moved vertex) and on L_v of its vertices:
+  /// l2_at_[v] is the l2_clock_ of the last change of L2_[v] (set_l2()),
+  /// class_at_[t] the l2_clock_ when tet t's class was kept, so the kept
+  /// class holds while no vertex of t has a later change.
+  mutable std::vector<signed char> class_;  ///< -1: not kept
+  mutable std::vector<std::int64_t> class_at_;
+  std::vector<std::int64_t> l2_at_;
+  std::int64_t l2_clock_ = 0;
+  void set_l2(int v, double l2) {
+    if (L2_[v] != l2) L2_[v] = l2, l2_at_[v] = ++l2_clock_;
+  }
   bool fixing_ = false;  ///< in fix_violations()
   /// While fixing_: max(the worst min-sine of the mesh, the sine of its
   /// smallest dihedral angle) at the start of fix_violations(); a relaxed
@@ -522,6 +554,9 @@ class Improver {
   /// computation until forget_dihedral(t) (wherever q_[t] is set anew), so
   /// that mesh_worst() does not recompute every tet's angles on each call.
   double dihedral(int t) const;
+  /// Whether dihedral(t) > deg, where `sine` is sine_above(deg): from q_[t]
+  /// when it reaches `sine`, else by dihedral(t) itself (the same answer).
+  bool dihedral_above(int t, double deg, double sine) const { return q_[t] > sine || dihedral(t) > deg; }
   void forget_dihedral(int t) {
     if (t < int(dih_.size())) dih_[t] = std::numeric_limits<double>::quiet_NaN();
   }
@@ -712,15 +747,21 @@ class Improver {
     /// of v's triangles in that facet), the sign of the normal along it, and
     /// whether the triangle itself is seen with that sign.
     std::vector<signed char> drop, sign, old_ok;
-    double worst_old = 0;     ///< the star's worst min-sine
-    int bad_old = 0;          ///< the star's tets below sin(kContractCountDeg)
-    double floor = 0;         ///< the relaxed rule's floor (NaN: strict rule only)
-    bool coarsen = false;     ///< the floor is coarsen()'s (no count below kContractCountDeg asked)
-    std::size_t witness = 0;  ///< the star's tet that refused the last target (tried first)
+    double worst_old = 0;       ///< the star's worst min-sine
+    int bad_old = 0;            ///< the star's tets below sin(kContractCountDeg)
+    double floor = 0;           ///< the relaxed rule's floor (NaN: strict rule only)
+    bool coarsen = false;       ///< the floor is coarsen()'s (no count below kContractCountDeg asked)
+    std::size_t witness = 0;    ///< the star's tet that refused the last target (tried first)
+    bool facets_known = false;  ///< drop, sign and old_ok filled (removal_facets())
   };
-  /// Fills `r` for v; false when v may not be removed. Marks the star's
-  /// vertices in contract_marks_ (value 0).
+  /// Fills `r` for v but drop, sign and old_ok; false when v may not be
+  /// removed. Marks the star's vertices in contract_marks_ (value 0).
   bool removal(int v, Removal& r) const;
+  /// Fills r.drop, r.sign and r.old_ok once per removal(): asked only by a
+  /// target that passes the min-sine rules (the phase's time, issue 14: most
+  /// targets do not, and these need the area normals and exact orientations
+  /// of v's boundary triangles).
+  void removal_facets(Removal& r) const;
   /// The new tets and boundary changes of contracting (r.v, u), and their
   /// worst min-sine; -HUGE_VAL when a check or accept() refuses it. Needs
   /// contract_marks_ as removal(r) left it (each call marks its own shared
@@ -775,6 +816,9 @@ class Improver {
   /// (degrees) of the mesh, the relaxed rule's floors; NaN outside it (the
   /// strict rule only).
   double contract_floor_ = std::numeric_limits<double>::quiet_NaN(), contract_dihedral_ = 0;
+  /// The relaxed rule's floor in min-sine, max(contract_floor_,
+  /// sin(contract_dihedral_)), set with them (removal() read it per vertex).
+  double contract_floor_sine_ = 0;
   /// Sets both floors from the live tets.
   void set_contract_floors();
   int contract_passes_ = 0;
@@ -810,6 +854,11 @@ class Improver {
   /// parent, -1 at the root): grows the tree beyond its other edges, sets
   /// next[] and value, returns value.
   double grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b);
+  /// The face beyond edge e of `face` when it is sandwiched between a and b
+  /// (the tets across the faces (p, q, a) and (p, q, b) share their fourth
+  /// vertex w) and reads (q, p, w) with a on its positive side: true, with
+  /// that face u and its tets na (at a) and nb (at b).
+  bool sandwiched(const Sandwich& face, int e, int a, int b, std::array<int, 3>& u, int& na, int& nb) const;
   std::vector<Sandwich> sandwich_faces_;  ///< remove_faces()'s (kept to spare its allocation)
   /// t's vertex other than x, y and z (-1 if none).
   int other_vertex(int t, int x, int y, int z) const;

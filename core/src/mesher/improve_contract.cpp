@@ -73,6 +73,10 @@ Tri with(Tri t, int v, int u) {
 
 bool holds(const Tri& t, int v) { return t[0] == v || t[1] == v || t[2] == v; }
 
+/// sin(kContractCountDeg), computed once (removal() and contraction_bound()
+/// computed it per call; the same value).
+const double kContractCountSine = std::sin(kContractCountDeg * geometry::kPi / 180);
+
 }  // namespace
 
 bool Improver::on_vertex_ball(int v) const {
@@ -173,21 +177,30 @@ bool Improver::removal(int v, Removal& r) const {
   if (targets.empty()) return false;
   // Once per vertex, what no target changes: the star's vertices (marked),
   // its worst and its count below sin(kContractCountDeg), the relaxed
-  // floor, and per boundary triangle its facet's axis and sign.
+  // floor; per boundary triangle its facet's axis and sign later, when a
+  // target asks (removal_facets()).
   contract_marks_.reset(P_.size());
   for (int t : S)
     for (int x : tets_[t]) contract_marks_.put(x, 0);
-  const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
+  const double below = kContractCountSine;
   r.worst_old = HUGE_VAL;
   r.bad_old = 0;
   for (int t : S) {
     r.worst_old = std::min(r.worst_old, q_[t]);
     r.bad_old += q_[t] < below;
   }
-  r.floor = std::isnan(contract_floor_) ? contract_floor_
-                                        : std::max(contract_floor_, std::sin(contract_dihedral_ * geometry::kPi / 180));
+  r.floor = std::isnan(contract_floor_) ? contract_floor_ : contract_floor_sine_;
   r.coarsen = false;
   r.witness = 0;
+  r.facets_known = false;
+  return true;
+}
+
+void Improver::removal_facets(Removal& r) const {
+  if (r.facets_known) return;
+  r.facets_known = true;
+  const std::vector<int>& bt = r.bnd;
+  const std::vector<int>& label = r_.mesh.boundary_facet;
   r.drop.assign(bt.size(), 0);
   r.sign.assign(bt.size(), 0);
   r.old_ok.assign(bt.size(), 0);
@@ -213,13 +226,13 @@ bool Improver::removal(int v, Removal& r) const {
     const Tri& o = bnd_[bt[i]];
     r.old_ok[i] = projected_orientation(P_[o[0]], P_[o[1]], P_[o[2]], r.drop[i]) == r.sign[i];
   }
-  return true;
 }
 
 void Improver::set_contract_floors() {
   const MeshWorst w = mesh_worst();
   contract_floor_ = w.sine;
   contract_dihedral_ = w.dihedral_deg;
+  contract_floor_sine_ = std::max(contract_floor_, std::sin(contract_dihedral_ * geometry::kPi / 180));
 }
 
 void Improver::contract_targets(int v, std::vector<int>& out) const {
@@ -232,14 +245,11 @@ double Improver::contraction_bound(Removal& r, int u, int& rule) const {
   const int v = r.v;
   const std::vector<int>&S = r.star, &bt = r.bnd;
   // The cheapest refusals first (each check refuses on its own, so their
-  // order changes no result). The boundary: a triangle of a facet not seen
-  // with the facet's sign (a fold already there) refuses every target off it.
-  for (std::size_t i = 0; i < bt.size(); ++i)
-    if (!r.old_ok[i] && !holds(bnd_[bt[i]], u)) return -HUGE_VAL;
-  // The min-sine rule before the exact checks: the new tets' min-sines must
+  // order changes no result; the witness below only orders the scan). The
+  // min-sine rule before the exact checks: the new tets' min-sines must
   // all beat the star's worst (the strict rule) or the relaxed floor, as
   // accept() will ask; from the tet that refused the last target on.
-  const double below = std::sin(kContractCountDeg * geometry::kPi / 180);
+  const double below = kContractCountSine;
   bool strict = true, relaxed = !std::isnan(r.floor);
   int bad = r.bad_old, holding = 0;
   double worst = HUGE_VAL;
@@ -265,6 +275,11 @@ double Improver::contraction_bound(Removal& r, int u, int& rule) const {
   if (holding == 0 || holding == int(S.size())) return -HUGE_VAL;
   // The relaxed rule also needs fewer tets under kContractCountDeg.
   if (!strict && bad <= 0 && !r.coarsen) return -HUGE_VAL;  // not asked by coarsen()'s floor
+  // The boundary: a triangle of a facet not seen with the facet's sign (a
+  // fold already there) refuses every target off it.
+  removal_facets(r);
+  for (std::size_t i = 0; i < bt.size(); ++i)
+    if (!r.old_ok[i] && !holds(bnd_[bt[i]], u)) return -HUGE_VAL;
   rule = strict ? 1 : 2;
   return worst;
 }
@@ -275,6 +290,7 @@ double Improver::contraction_rest(Removal& r, int u, int rule, std::vector<Tet>&
   const std::vector<int>&S = r.star, &bt = r.bnd;
   fresh.clear();
   boundary.clear();
+  removal_facets(r);  // (contraction_bound() filled them)
   // The link condition: a vertex adjacent to both v and u is a vertex of a
   // tet holding edge vu (else the contraction would double an edge). The
   // star's vertices are marked (removal()); those of the tets at vu get u + 1.
@@ -337,9 +353,14 @@ bool Improver::apply_contraction(const Removal& r, const std::vector<Tet>& fresh
   const int v = r.v;
   // Whether the star holds the mesh's worst tet (then the floors may rise).
   bool floor_tet = false;
-  if (!std::isnan(contract_floor_))
-    for (int t : r.star) floor_tet = floor_tet || q_[t] <= contract_floor_ || dihedral(t) <= contract_dihedral_;
-  if (!replace(r.star, fresh, boundary, v)) return false;
+  if (!std::isnan(contract_floor_)) {
+    const double sine = sine_above(contract_dihedral_);  // the phase's time: dihedral(t) only where q_[t] cannot tell
+    for (int t : r.star)
+      floor_tet = floor_tet || q_[t] <= contract_floor_ || (q_[t] <= sine && dihedral(t) <= contract_dihedral_);
+  }
+  // Called right after contraction_rest()'s accept() of this change returned
+  // true (contract_vertex(), contract()): its class guard's L_v are taken.
+  if (!replace(r.star, fresh, boundary, v, true)) return false;
   if (floor_tet) set_contract_floors();
   if (v >= int(removed_.size())) removed_.resize(P_.size(), 0);
   removed_[v] = 1;

@@ -24,6 +24,19 @@ int Improver::other_vertex(int t, int x, int y, int z) const {
   return -1;
 }
 
+bool Improver::sandwiched(const Sandwich& face, int e, int a, int b, std::array<int, 3>& u, int& na, int& nb) const {
+  const int p = face.u[e], q = face.u[(e + 1) % 3], r = face.u[(e + 2) % 3];
+  na = nb_[face.ta][slot(face.ta, r)];
+  nb = nb_[face.tb][slot(face.tb, r)];
+  const int w = na >= 0 ? other_vertex(na, p, q, a) : -1;
+  if (nb < 0 || w < 0 || w == b || other_vertex(nb, p, q, b) != w) return false;
+  // Oriented with a on its positive side, it must read (q, p, w).
+  const int s = slot(na, a);
+  u = {{tets_[na][kInward[s][0]], tets_[na][kInward[s][1]], tets_[na][kInward[s][2]]}};
+  while (u[2] != w) u = {{u[1], u[2], u[0]}};
+  return u[0] == q && u[1] == p;
+}
+
 double Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b) {
   // Edge e of face (u0, u1, u2) runs from u_e to u_(e+1); the face beyond it
   // shares the edge reversed. `back` is the edge to the parent (-1 at the
@@ -31,32 +44,23 @@ double Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, in
   double value = HUGE_VAL;
   for (int e = 0; e < 3; ++e) {
     if (e == back) continue;
-    const int p = faces[f].u[e], q = faces[f].u[(e + 1) % 3], r = faces[f].u[(e + 2) % 3];
+    const int p = faces[f].u[e], q = faces[f].u[(e + 1) % 3];
     // Stopping here leaves the edge on the polygon's boundary: the new tet
     // (p, q, b, a) around the new edge ab.
     const double stop = min_sine(P_[p], P_[q], P_[b], P_[a]);
     double cont = -HUGE_VAL;
     int child = -1;
-    if (int(faces.size()) < kMaxSandwich) {
-      // The face beyond edge pq is sandwiched when the tets across the faces
-      // (p, q, a) and (p, q, b) share their fourth vertex w.
-      const int ta = faces[f].ta, tb = faces[f].tb;
-      const int na = nb_[ta][slot(ta, r)], nb = nb_[tb][slot(tb, r)];
-      const int w = na >= 0 ? other_vertex(na, p, q, a) : -1;
-      if (nb >= 0 && w >= 0 && w != b && other_vertex(nb, p, q, b) == w) {
-        // Oriented with a on its positive side, it must read (q, p, w).
-        const int s = slot(na, a);
-        std::array<int, 3> u = {{tets_[na][kInward[s][0]], tets_[na][kInward[s][1]], tets_[na][kInward[s][2]]}};
-        while (u[2] != w) u = {{u[1], u[2], u[0]}};
-        std::array<int, 3> key = u;
-        std::sort(key.begin(), key.end());
-        bool seen = false;
-        for (const Sandwich& g : faces) seen = seen || g.key == key;
-        if (u[0] == q && u[1] == p && !seen) {
-          child = int(faces.size());
-          faces.push_back({{{q, p, w}}, key, na, nb, {{-1, -1, -1}}, 0});
-          cont = grow_sandwich(faces, child, 0, a, b);
-        }
+    std::array<int, 3> u;
+    int na, nb;
+    if (int(faces.size()) < kMaxSandwich && sandwiched(faces[f], e, a, b, u, na, nb)) {
+      std::array<int, 3> key = u;
+      std::sort(key.begin(), key.end());
+      bool seen = false;
+      for (const Sandwich& g : faces) seen = seen || g.key == key;
+      if (!seen) {
+        child = int(faces.size());
+        faces.push_back({u, key, na, nb, {{-1, -1, -1}}, 0});
+        cont = grow_sandwich(faces, child, 0, a, b);
       }
     }
     // Continue only when strictly better: fewer tets on a tie.
@@ -78,6 +82,16 @@ bool Improver::remove_faces(int t, int k) {
   std::sort(key.begin(), key.end());
   std::vector<Sandwich>& faces = sandwich_faces_;
   faces.assign(1, {u0, key, t, n, {{-1, -1, -1}}, 0});
+  // The phase's time (issue 14; the same outcome): without a sandwiched face
+  // beyond any edge of the root, the tree is the root alone, two old tets
+  // (the 2-3 flip, refused below), so its min-sines are not computed.
+  bool grows = false;
+  for (int e = 0; e < 3 && !grows; ++e) {
+    std::array<int, 3> u;
+    int na, nb;
+    grows = sandwiched(faces[0], e, a, b, u, na, nb);
+  }
+  if (!grows) return false;
   grow_sandwich(faces, 0, -1, a, b);
   // The chosen faces (a tree from the root) and the polygon's boundary
   // edges, each giving the new tet (p, q, b, a).
@@ -104,7 +118,7 @@ bool Improver::remove_faces(int t, int k) {
   // beat the old set's.
   if (old.size() < 4 || !(faces[0].value > worst_old)) return false;
   double w;
-  if (!accept(old, fresh, w) || !replace(old, fresh)) return false;
+  if (!accept(old, fresh, w) || !replace(old, fresh, {}, -1, true)) return false;
   ++st_.multi_face_removals;
   return true;
 }
