@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <random>
 #include <set>
@@ -191,7 +192,39 @@ TEST(Improve, TheStoppingRulesMeasuresAreThoseOfTheLiveTets) {
   const Improver::QualityMeasures after = recount(c.r);
   EXPECT_EQ(after.smallest_dihedral_deg, last.smallest_dihedral_deg);
   EXPECT_EQ(after.under_count_deg, last.under_count_deg);
-  EXPECT_LE(c.r.improve.passes, mesher::kImprovePasses);
+  EXPECT_LE(c.r.improve.passes, mesher::kImprovePasses + mesher::kImproveExtraPasses);
+}
+
+// The extra passes' rule (Improver::pass_extends, kImproveExtraPasses): a
+// pass is followed by an extra one only when it leaves the smallest dihedral
+// angle under kExtraPassBelowDeg and raises it by more than kExtraPassRise
+// times, or cuts the count under kQualityCountDeg by more than the share
+// kExtraPassCut; either one strictly, and whatever extends also improves
+// (pass_improves).
+TEST(Improve, AnExtraPassFollowsOnlyAFastRiseOrCutUnderTheBound) {
+  using Q = Improver::QualityMeasures;
+  const double below = mesher::kExtraPassBelowDeg;
+  const Q before{below / 8, 1000};
+  const double up = mesher::kExtraPassRise * before.smallest_dihedral_deg;  // exact (0.0625 x 1.5)
+  const auto cut = std::size_t(std::lround((1 - mesher::kExtraPassCut) * 1000));
+  EXPECT_FALSE(Improver::pass_extends(before, before));
+  EXPECT_TRUE(Improver::pass_extends(before, Q{up * 1.01, 1000}));
+  EXPECT_TRUE(Improver::pass_extends(before, Q{up * 1.01, 1001}));  // the rise alone is enough
+  EXPECT_FALSE(Improver::pass_extends(before, Q{up, 1000}));        // by the factor exactly: not more
+  EXPECT_TRUE(Improver::pass_extends(before, Q{before.smallest_dihedral_deg, cut - 1}));
+  EXPECT_TRUE(Improver::pass_extends(before, Q{0.9 * before.smallest_dihedral_deg, cut - 1}));  // the cut alone
+  EXPECT_FALSE(Improver::pass_extends(before, Q{before.smallest_dihedral_deg, cut + 1}));
+  EXPECT_FALSE(Improver::pass_extends(before, Q{up * 0.99, cut + 1}));  // a rise and a cut, both too small
+  // At or above the bound, however fast the rise or the cut: no extra pass.
+  EXPECT_FALSE(Improver::pass_extends(before, Q{below, 1000}));
+  EXPECT_FALSE(Improver::pass_extends(before, Q{2 * below, 10}));
+  EXPECT_TRUE(Improver::pass_extends(Q{0.25, 1000}, Q{0.45, 1000}));
+  for (double a : {0.0, 0.01, 0.1, 0.3, 0.49, 0.6})
+    for (double b : {0.0, 0.005, 0.02, 0.2, 0.45, 0.5, 1.0})
+      for (std::size_t n : {0, 1, 10, 899, 900, 1000, 1100}) {
+        const Q x{a, 1000}, y{b, n};
+        if (Improver::pass_extends(x, y)) EXPECT_TRUE(Improver::pass_improves(x, y)) << a << " " << b << " " << n;
+      }
 }
 
 TEST(Improve, TwoThreeFlipThroughAFlatFace) {
@@ -803,6 +836,15 @@ std::vector<std::string> models() {
   return out;
 }
 
+/// models() and those of the shared models `names` that are present.
+std::vector<std::string> models_and(std::initializer_list<const char*> names) {
+  std::vector<std::string> out = models();
+  for (const char* n : names)
+    if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/" + n))
+      out.push_back(std::string(WQMESH_SHARED_MODELS) + "/" + n);
+  return out;
+}
+
 /// A model meshed without the improvement phase (`plain`) and with it (`r`).
 struct Meshed {
   invariants::Input in;
@@ -1225,6 +1267,83 @@ std::unique_ptr<Unimproved> unimproved(const std::string& f) {
   return u;
 }
 
+// The pass loop's contract (Improver::run, kImprovePasses,
+// kImproveExtraPasses), read from its record of each pass on models near
+// small input angles and on the example models, as improve_phase() runs it
+// (the classes set): the measures chain from pass to pass; a pass inserts
+// exactly when the pass before it stalled, or it is the last regular pass
+// and the pass before it raised the smallest dihedral angle, or it is an
+// extra pass; the loop goes on only past a pass that is not a stalled one
+// with insertion and, from the last regular pass on, one that extends
+// (pass_extends), and it stops at the first pass that ends it; at most
+// kImprovePasses + kImproveExtraPasses passes. After every pass, and in the
+// mesh written back (recounted from it), the smallest dihedral angle is never
+// lower and the count under kQualityCountDeg never higher than before the
+// phase.
+TEST(Improve, ThePassLoopInsertsAndGoesOnByItsRules) {
+  const std::vector<std::string> files = models_and({"slit-1.off", "wedge-1.off"});
+  ASSERT_FALSE(files.empty());
+  const auto measures = [](const TetMesh& m) {
+    Improver::QualityMeasures q;
+    for (const auto& t : m.tets) {
+      const double d = tet_min_dihedral_deg(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], m.vertices[t[3]]);
+      q.smallest_dihedral_deg = std::min(q.smallest_dihedral_deg, d);
+      q.under_count_deg += d < mesher::kQualityCountDeg;
+    }
+    return q;
+  };
+  const int regular = mesher::kImprovePasses, most = regular + mesher::kImproveExtraPasses;
+  int last_regular_after_rise = 0, ended_early = 0, full = 0;
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
+    const Improver::QualityMeasures start = measures(run->r.mesh);
+    ASSERT_TRUE(im.run());
+    const auto& rec = im.pass_records();
+    ASSERT_FALSE(rec.empty());
+    ASSERT_EQ(int(rec.size()), im.stats().passes);
+    EXPECT_LE(int(rec.size()), most);
+    EXPECT_EQ(rec[0].before.smallest_dihedral_deg, start.smallest_dihedral_deg);
+    EXPECT_EQ(rec[0].before.under_count_deg, start.under_count_deg);
+    for (int i = 0; i < int(rec.size()); ++i) {
+      SCOPED_TRACE("pass " + std::to_string(i));
+      const auto& p = rec[std::size_t(i)];
+      const bool stalled = !Improver::pass_improves(p.before, p.after);
+      bool after_stall = false, after_rise = false;
+      if (i > 0) {
+        const auto& q = rec[std::size_t(i) - 1];
+        EXPECT_EQ(p.before.smallest_dihedral_deg, q.after.smallest_dihedral_deg);
+        EXPECT_EQ(p.before.under_count_deg, q.after.under_count_deg);
+        after_stall = !Improver::pass_improves(q.before, q.after);
+        after_rise = i == regular - 1 && q.after.smallest_dihedral_deg > q.before.smallest_dihedral_deg;
+      }
+      EXPECT_EQ(p.inserted, after_stall || after_rise || i >= regular);
+      last_regular_after_rise += after_rise;
+      const bool ends = (stalled && p.inserted) || (i >= regular - 1 && !Improver::pass_extends(p.before, p.after));
+      EXPECT_EQ(ends || i + 1 == most, i + 1 == int(rec.size()));
+      EXPECT_GE(p.after.smallest_dihedral_deg, start.smallest_dihedral_deg);
+      EXPECT_LE(p.after.under_count_deg, start.under_count_deg);
+    }
+    ended_early += int(rec.size()) < regular;
+    full += int(rec.size()) >= regular;
+    im.finish();
+    const Improver::QualityMeasures end = measures(run->r.mesh);
+    EXPECT_GE(end.smallest_dihedral_deg, start.smallest_dihedral_deg);
+    EXPECT_LE(end.under_count_deg, start.under_count_deg);
+    std::printf("[ passes   ] %s: %zu passes, smallest dihedral %.4g -> %.4g deg, under %g degrees %zu -> %zu\n",
+                fs::path(f).filename().c_str(), rec.size(), start.smallest_dihedral_deg, end.smallest_dihedral_deg,
+                mesher::kQualityCountDeg, start.under_count_deg, end.under_count_deg);
+  }
+  std::printf("[ passes   ] %d models ended before pass %d, %d reached it; %d inserted in it after a rise\n",
+              ended_early, regular, full, last_regular_after_rise);
+  // Each branch of the loop was taken: a stalled pass with insertion ended
+  // it, the last regular pass was reached, and it inserted after a rise.
+  EXPECT_GT(ended_early, 0);
+  EXPECT_GT(full, 0);
+  EXPECT_GT(last_regular_after_rise, 0);
+}
+
 TEST(Improve, AVertexSmoothedOntoAVertexBallIsNeverContracted) {
   // improve_contract.cpp's contract: a vertex on or inside the sphere of a
   // vertex ball is never removed. The octahedron of
@@ -1313,10 +1432,7 @@ TEST(Improve, EveryVertexsShortestEdgeIsKeptCurrentThroughThePhase) {
   // of the live tets, recomputed here (after a smoothing step the Improver
   // reads only the edges at the moved vertex again; a cached value that went
   // stale would show here). Near-small-angle models smooth the most.
-  std::vector<std::string> files = models();
-  for (const char* n : {"slit-1.off", "wedge-1.off"})
-    if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/" + n))
-      files.push_back(std::string(WQMESH_SHARED_MODELS) + "/" + n);
+  const std::vector<std::string> files = models_and({"slit-1.off", "wedge-1.off"});
   ASSERT_FALSE(files.empty());
   std::size_t smoothed = 0;
   for (const std::string& f : files) {
@@ -1367,6 +1483,102 @@ TEST(Improve, EveryVertexsShortestEdgeIsCurrentAfterEachChange) {
   EXPECT_GT(inserted, 0u);
 }
 
+// Applies the phase's operations to im one at a time, as the passes do but
+// each kind once over the mesh as it stands: flips of the tets below
+// kImproveTargetDeg, smoothing of every vertex, insertion at the tets below
+// kInsertBelowDeg (inside, else on a facet), contraction of every vertex;
+// calls changed(what) after each accepted change and stops when it returns
+// false.
+template <class Changed>
+void one_at_a_time(Improver& im, Changed changed) {
+  const double target = std::sin(mesher::kImproveTargetDeg * geometry::kPi / 180),
+               insert_below = std::sin(mesher::kInsertBelowDeg * geometry::kPi / 180);
+  const auto tets = int(im.tets().size());
+  for (int t = 0; t < tets; ++t)
+    if (im.alive(t) && im.quality(t) < target && im.improve_tet(t) && !changed("a flip")) return;
+  const auto verts = int(im.points().size());
+  for (int v = 0; v < verts; ++v)
+    if (im.smooth(v) && !changed("a smoothing step")) return;
+  for (int t = 0; t < int(im.tets().size()); ++t)
+    if (im.alive(t) && im.quality(t) < insert_below && (im.insert(t) || im.insert_boundary(t)) &&
+        !changed("an insertion"))
+      return;
+  for (int v = 0; v < int(im.points().size()); ++v)
+    if (!im.removed(v) && im.contract_vertex(v) && !changed("a contraction")) return;
+}
+
+// The classes of im's live tets recounted from scratch: classify_mesh (the
+// statistics' code) on the mesh as it stands, L_v from its tets; `live`
+// gets the live tets' indices in im, in the order of the classes.
+MeshClasses recount_classes(const Improver& im, const Unimproved& u, std::vector<int>& live) {
+  TetMesh m;
+  m.vertices = im.points();
+  live.clear();
+  for (int t = 0; t < int(im.tets().size()); ++t)
+    if (im.alive(t)) {
+      m.tets.push_back(im.tets()[std::size_t(t)]);
+      live.push_back(t);
+    }
+  return classify_mesh(m, u.r.protecting_balls, u.opt.rho0, u.opt.theta_deg);
+}
+
+// The class guard itself (accept()'s classes_before() and classes_change(),
+// and smooth()'s on the min-sines ascend() computed; the indexing of
+// 2e13c3c): on the example models (small input angles, facets and edges),
+// with the operations applied one at a time, after each accepted change a
+// recount from scratch gives (a) every live tet the class the Improver keeps
+// for it (what the guard judges the next change by) and (b) no more
+// violations than before the change. The same operations without the
+// classes (the min-sine rule alone) make changes that add violations (on
+// bracket.off), so the guard had changes to refuse.
+TEST(Improve, NoAcceptedChangeAddsAViolationByARecountFromScratch) {
+  std::vector<std::string> files;
+  for (const char* n : {"bracket.off", "edge_facet.off", "slit.off", "spike.off", "thin_wedge.off"})
+    files.push_back(std::string(WQMESH_EXAMPLE_MODELS) + "/" + n);
+  if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/wedge.off"))  // near a small angle: many tets of a bad shape
+    files.push_back(std::string(WQMESH_SHARED_MODELS) + "/wedge.off");
+  std::size_t changes = 0, unguarded_adds = 0;
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
+    std::vector<int> live;
+    std::size_t violations = recount_classes(im, *run, live).violations;
+    one_at_a_time(im, [&](const char* what) {
+      ++changes;
+      const MeshClasses now = recount_classes(im, *run, live);
+      for (std::size_t i = 0; i < live.size(); ++i)
+        if (im.tet_class(live[i]) != now.tet_class[i]) {
+          ADD_FAILURE() << "after " << what << " (change " << changes << "), tet " << live[i] << ": kept class "
+                        << int(im.tet_class(live[i])) << ", recount " << int(now.tet_class[i]);
+          return false;
+        }
+      EXPECT_LE(now.violations, violations) << "after " << what << " (change " << changes << ")";
+      violations = now.violations;
+      return !HasFailure();
+    });
+    // Without the classes: the same operations add violations.
+    Unimproved free;
+    free.opt = run->opt;
+    {
+      const invariants::Input in = invariants::load(f);
+      free.r = mesh_polyhedron(in.plc, in.analysis, free.opt);
+    }
+    Improver plain(free.r, free.opt.rho0, free.opt.max_size);
+    std::size_t was = recount_classes(plain, free, live).violations;
+    one_at_a_time(plain, [&](const char*) {
+      const std::size_t now = recount_classes(plain, free, live).violations;
+      unguarded_adds += now > was;
+      was = now;
+      return true;
+    });
+  }
+  std::printf("[ guard    ] %zu changes judged by the guard; %zu changes without it added violations\n", changes,
+              unguarded_adds);
+  EXPECT_GT(changes, 0u);
+  EXPECT_GT(unguarded_adds, 0u);
+}
+
 // The skip rule of quality_measures(), mesh_worst() and the contraction's
 // floor test (issue 14, the phase's time): a tet whose min-sine is above
 // sine_above(deg) has its smallest dihedral angle above deg, as
@@ -1376,10 +1588,7 @@ TEST(Improve, EveryVertexsShortestEdgeIsCurrentAfterEachChange) {
 // measures that skip by it are those of a recount of every live tet.
 TEST(Improve, AMinSineAboveSineAboveShowsTheSmallestAngleAbove) {
   std::vector<std::array<Point3, 4>> tets;
-  std::vector<std::string> files = models();
-  for (const char* n : {"slit-1.off", "wedge-1.off"})
-    if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/" + n))
-      files.push_back(std::string(WQMESH_SHARED_MODELS) + "/" + n);
+  const std::vector<std::string> files = models_and({"slit-1.off", "wedge-1.off"});
   ASSERT_FALSE(files.empty());
   auto recount = [](const Improver& im) {
     Improver::QualityMeasures m;

@@ -341,9 +341,7 @@ double Improver::contraction_rest(Removal& r, int u, int rule, std::vector<Tet>&
 
 double Improver::contraction(Removal& r, int u, std::vector<Tet>& fresh,
                              std::vector<std::pair<int, Tri>>& boundary) const {
-  fresh.clear();
-  boundary.clear();
-  int rule = 0;
+  int rule = 0;  // contraction_rest() clears fresh and boundary
   if (contraction_bound(r, u, rule) == -HUGE_VAL) return -HUGE_VAL;
   return contraction_rest(r, u, rule, fresh, boundary);
 }

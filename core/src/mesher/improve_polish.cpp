@@ -155,8 +155,13 @@ std::size_t Improver::polish_rounds(std::size_t max_changes, std::size_t* work) 
   double last = HUGE_VAL;
   int stalls = 0;
   // coarsen()'s budget: every operation tried is taken from *work.
-  const auto spend = [work]() { return work == nullptr || (*work > 0 && (--*work, true)); };
-  for (int round = 0; round < kPolishRounds && n < max_changes && (work == nullptr || *work > 0) && poll(); ++round) {
+  const auto budget_left = [work] { return work == nullptr || *work > 0; };
+  const auto spend = [&] {
+    if (!budget_left()) return false;
+    if (work != nullptr) --*work;
+    return true;
+  };
+  for (int round = 0; round < kPolishRounds && n < max_changes && budget_left() && poll(); ++round) {
     // C: the cosine of the mesh's smallest dihedral angle D; S = sin D.
     const double C = largest_mesh_cosine();
     if (C <= 0) break;  // every angle 90 degrees or more: nothing to raise
@@ -187,7 +192,7 @@ std::size_t Improver::polish_rounds(std::size_t max_changes, std::size_t* work) 
     set_polish_floor(C);
     for (const auto& entry : list) {
       const int t = entry.second;
-      if (n >= max_changes || (work != nullptr && *work == 0) || !poll()) break;
+      if (n >= max_changes || !budget_left() || !poll()) break;
       if (!alive(t)) continue;
       // Each operation is retried only after a change touched the tet or the
       // vertex (the passes' own marks: the floor only rises, so what failed
