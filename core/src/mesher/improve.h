@@ -263,9 +263,9 @@ class Improver {
   static double sine_above(double deg);
   /// Whether an extra pass follows a pass from `before` to `after` (see
   /// kImproveExtraPasses): after's smallest dihedral angle is under
-  /// kExtraPassBelowDeg and above kExtraPassRise times before's, or after's
-  /// count under kQualityCountDeg is below (1 - kExtraPassCut) times
-  /// before's. Either implies pass_improves().
+  /// kExtraPassBelowDeg, and either it is above kExtraPassRise times
+  /// before's or after's count under kQualityCountDeg is below
+  /// (1 - kExtraPassCut) times before's. It implies pass_improves().
   static bool pass_extends(const QualityMeasures& before, const QualityMeasures& after);
   /// What each pass of run() did, in order (for the tests of the loop's
   /// contract): the measures before and after it (after = before when it
