@@ -1300,6 +1300,7 @@ TEST(Improve, ThePassLoopInsertsAndGoesOnByItsRules) {
     Improver& im = *run->im;
     const Improver::QualityMeasures start = measures(run->r.mesh);
     ASSERT_TRUE(im.run());
+    const int rises_before = last_regular_after_rise;
     const auto& rec = im.pass_records();
     ASSERT_FALSE(rec.empty());
     ASSERT_EQ(int(rec.size()), im.stats().passes);
@@ -1331,17 +1332,22 @@ TEST(Improve, ThePassLoopInsertsAndGoesOnByItsRules) {
     const Improver::QualityMeasures end = measures(run->r.mesh);
     EXPECT_GE(end.smallest_dihedral_deg, start.smallest_dihedral_deg);
     EXPECT_LE(end.under_count_deg, start.under_count_deg);
-    std::printf("[ passes   ] %s: %zu passes, smallest dihedral %.4g -> %.4g deg, under %g degrees %zu -> %zu\n",
-                fs::path(f).filename().c_str(), rec.size(), start.smallest_dihedral_deg, end.smallest_dihedral_deg,
-                mesher::kQualityCountDeg, start.under_count_deg, end.under_count_deg);
+    std::printf(
+        "[ passes   ] %s: %zu passes (the last regular one inserting after a rise: %s), smallest dihedral %.4g -> "
+        "%.4g deg, under %g degrees %zu -> %zu\n",
+        fs::path(f).filename().c_str(), rec.size(), last_regular_after_rise > rises_before ? "yes" : "no",
+        start.smallest_dihedral_deg, end.smallest_dihedral_deg, mesher::kQualityCountDeg, start.under_count_deg,
+        end.under_count_deg);
   }
   std::printf("[ passes   ] %d models ended before pass %d, %d reached it; %d inserted in it after a rise\n",
               ended_early, regular, full, last_regular_after_rise);
   // Each branch of the loop was taken: a stalled pass with insertion ended
-  // it, the last regular pass was reached, and it inserted after a rise.
+  // it, the last regular pass was reached, and, on the shared models
+  // (extrusion, example012, slit-1; absent from the sanitizer build), it
+  // inserted after a rise.
   EXPECT_GT(ended_early, 0);
   EXPECT_GT(full, 0);
-  EXPECT_GT(last_regular_after_rise, 0);
+  if (fs::exists(std::string(WQMESH_SHARED_MODELS) + "/slit-1.off")) EXPECT_GT(last_regular_after_rise, 0);
 }
 
 TEST(Improve, AVertexSmoothedOntoAVertexBallIsNeverContracted) {
