@@ -1621,6 +1621,10 @@ TEST(Improve, AMinSineAboveSineAboveShowsTheSmallestAngleAbove) {
       if (stage == 0) ASSERT_TRUE(im.run());
     }
   }
+  // The coverage below is counted on the random tets alone, so that it does
+  // not depend on which models are present (the sanitizer build has only
+  // the example models).
+  const std::size_t from_models = tets.size();
   std::mt19937 rng(15);
   std::uniform_real_distribution<double> coord(-1, 1);
   for (int i = 0; i < 20000; ++i) {
@@ -1630,17 +1634,21 @@ TEST(Improve, AMinSineAboveSineAboveShowsTheSmallestAngleAbove) {
     tets.push_back(p);
   }
   std::size_t shown = 0, probes = 0;
-  for (const auto& p : tets) {
+  for (std::size_t i = 0; i < tets.size(); ++i) {
+    const auto& p = tets[i];
     const double q = min_sine(p[0], p[1], p[2], p[3]), d = tet_min_dihedral_deg(p[0], p[1], p[2], p[3]);
     for (double deg : {d, std::nextafter(d, 0.0), 0.5, 1.0, 1.3291251279648848, 5.0, 10.0, 20.0, 40.0, 59.0}) {
-      ++probes;
+      const bool counted = i >= from_models;
+      probes += counted;
       if (!(q > Improver::sine_above(deg))) continue;
-      ++shown;
+      shown += counted;
       ASSERT_GT(d, deg) << "min-sine " << q << ", probe " << deg;
     }
   }
-  // Most probes at fixed degrees are decided by the min-sine alone.
-  EXPECT_GT(shown, probes / 3);
+  // Many probes of the random tets are decided by the min-sine alone, so the
+  // shortcut is not vacuous (about a quarter with this seed: half of the
+  // random tets are flat, and a probe at d itself is never shown).
+  EXPECT_GT(shown, probes / 5) << shown << " of " << probes;
 }
 
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {
