@@ -254,8 +254,7 @@ const REPEAT_BELOW_S = 0.5, REPEAT_RUNS = 9, REPEAT_BUDGET_S = 5;
  * { improve, rp } in seconds, one per run.
  */
 function phaseRuns(model, name, first) {
-  const pick = (s) => ({ improve: phase(s, 'improve'), rp: (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0) });
-  const runs = [pick(first)];
+  const runs = [improveTimes(first)];
   if (runs[0].improve === null || !(runs[0].rp < REPEAT_BELOW_S)) return runs;
   const out = join(work, `${name}.repeat.mesh`), stats = join(work, `${name}.repeat.json`);
   const t0 = performance.now();
@@ -263,7 +262,7 @@ function phaseRuns(model, name, first) {
     const r = spawnSync(cli, ['mesh', model, '-o', out, '--stats', stats, '--quiet',
       '--max-vertices', String(opt.maxVertices)], { encoding: 'utf8', timeout: 1000 * opt.timeout });
     if (r.status !== 0 || !existsSync(stats)) break;
-    runs.push(pick(JSON.parse(readFileSync(stats, 'utf8'))));
+    runs.push(improveTimes(JSON.parse(readFileSync(stats, 'utf8'))));
   }
   return runs;
 }
@@ -392,6 +391,9 @@ const phase = (stats, name) => {
   const p = stats && (stats.phases || []).find((x) => x.name === name);
   return p ? p.time_s : null;
 };
+/** The time goal's figures in wqmesh's stats: the improve phase's seconds (null without it) and REFINE + PUMP's. */
+const improveTimes = (stats) =>
+  ({ improve: phase(stats, 'improve'), rp: (phase(stats, 'refine') ?? 0) + (phase(stats, 'pump') ?? 0) });
 /** The tet count of model `name` in the --baseline folder (its stats file), or null. */
 function baselineTets(name) {
   if (!opt.baseline) return null;
@@ -455,7 +457,7 @@ function goals(results) {
     const ref = base ? `; baseline ${base}, ${w.tets >= base ? '+' : ''}${(100 * (w.tets / base - 1)).toFixed(1)}%` : '';
     const tets = p ? verdict(w.tets <= 1.1 * p.tets, `${w.tets}`, '<=', `1.1 x ${p.tets}${ref}`)
       : na(`${cliHas.improve ? 'no --no-improve mesh' : 'no improvement phase'}; ${w.tets} tets${ref}`);
-    const imp = phase(s, 'improve'), rp = (phase(s, 'refine') ?? 0) + (phase(s, 'pump') ?? 0);
+    const { improve: imp, rp } = improveTimes(s);
     const runs = native.timeRuns || [];
     let time;
     if (imp === null) time = na('no improve phase in the stats');
