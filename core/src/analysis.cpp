@@ -219,12 +219,7 @@ class Analyzer {
         b.hi[q] = std::max(b.hi[q], p[q]);
       }
     a.input_box = b;
-    const double extent = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
-    const double grow = options_.box_margin * extent;
-    for (int q = 0; q < 3; ++q) {
-      a.bounding_box.lo[q] = b.lo[q] - grow;
-      a.bounding_box.hi[q] = b.hi[q] + grow;
-    }
+    a.bounding_box = grown_box(b, options_.box_margin);
   }
 
   int other_end(int e, int u) const { return plc_.edges[e].a == u ? plc_.edges[e].b : plc_.edges[e].a; }
@@ -541,24 +536,25 @@ class Analyzer {
 }  // namespace
 
 Analysis analyze(const PLC& plc, const AnalysisOptions& options) {
-  // Beyond the paper: the analysis runs on the input scaled by 2^-E (exact,
-  // see scaling.h), so that its formulas cannot overflow or underflow, and
-  // reports f(u) and the boxes in the input's units. Inputs that cannot be
-  // represented so are refused (out_of_range).
-  const int E = normalisation_exponent(plc);
-  check_representable(plc, E, options.box_margin);
+  // Beyond the paper: the analysis runs on the input normalised (translated
+  // when far from the origin, scaled by 2^-E; exact, see scaling.h), so that
+  // its formulas cannot overflow or underflow, and reports f(u) and the
+  // boxes in the input's units. Inputs that cannot be represented so are
+  // refused (out_of_range).
+  const Normalisation n = normalisation(plc);
+  check_representable(plc, n, options.box_margin);
   // The index is built here once, on the PLC the analysis runs on, and kept
-  // in the Analysis for the mesher (which runs on the same scaled copy).
-  if (E == 0) {
+  // in the Analysis for the mesher (which runs on the same normalised copy).
+  if (n.exponent == 0 && !n.translated()) {
     auto index = std::make_shared<const PlcIndex>(plc);
     Analysis a = Analyzer(plc, *index, options).run();
     a.index = std::move(index);
     return a;
   }
-  const PLC scaled = scaled_plc(plc, -E);
-  auto index = std::make_shared<const PlcIndex>(scaled);
-  Analysis a = Analyzer(scaled, *index, options).run();
-  scale_analysis(a, E);
+  const PLC normalised = normalised_plc(plc, n);
+  auto index = std::make_shared<const PlcIndex>(normalised);
+  Analysis a = Analyzer(normalised, *index, options).run();
+  analysis_to_input(a, n);
   a.index = std::move(index);
   return a;
 }

@@ -20,22 +20,107 @@ int normalisation_exponent(const PLC& plc) {
   return std::ilogb(big);
 }
 
+namespace {
+
+/// x - c is exact in doubles: Knuth's two-sum of x and -c (round to
+/// nearest, no overflow) gives x - c = d + e exactly, and e is 0.
+bool exact_difference(double x, double c) {
+  const double d = x - c;
+  if (!std::isfinite(d)) return false;
+  const double xs = d + c, cs = d - xs;  // the parts of d from x and from -c
+  return (x - xs) + (-c - cs) == 0;
+}
+
+}  // namespace
+
+Normalisation normalisation(const PLC& plc) {
+  Normalisation n;
+  n.exponent = normalisation_exponent(plc);
+  if (plc.vertices.empty()) return n;
+  Point3 centre{{0, 0, 0}};
+  for (int q = 0; q < 3; ++q) {
+    double lo = plc.vertices[0][q], hi = lo;
+    for (const Point3& p : plc.vertices) {
+      lo = std::min(lo, p[q]);
+      hi = std::max(hi, p[q]);
+    }
+    const double big = std::max(std::fabs(lo), std::fabs(hi));
+    if (!(big >= DBL_MIN) || !std::isfinite(big)) continue;
+    // u: the unit in the last place of the axis's largest coordinate (a
+    // multiple of every coordinate's unit on the axis); c: the box's middle
+    // rounded to a multiple of u, kept only if every difference is exact.
+    const double u = std::ldexp(1.0, std::ilogb(big) - (DBL_MANT_DIG - 1));
+    const double c = std::nearbyint((lo / 2 + hi / 2) / u) * u;
+    bool exact = std::isfinite(c);
+    for (std::size_t v = 0; exact && v < plc.vertices.size(); ++v) exact = exact_difference(plc.vertices[v][q], c);
+    if (exact) centre[q] = c;
+  }
+  double big = 0;
+  for (const Point3& p : plc.vertices)
+    for (int q = 0; q < 3; ++q) big = std::max(big, std::fabs(p[q] - centre[q]));
+  if (!(big > 0)) return n;
+  const int translated = std::ilogb(big);
+  if (n.exponent - translated < kTranslationGainBits) return n;
+  n.centre = centre;
+  n.exponent = translated;
+  return n;
+}
+
+PLC normalised_plc(const PLC& plc, const Normalisation& n) {
+  PLC out = n.exponent != 0 ? scaled_plc(plc, -n.exponent) : plc;
+  if (!n.translated()) return out;
+  for (std::size_t v = 0; v < plc.vertices.size(); ++v)
+    for (int q = 0; q < 3; ++q)
+      if (n.centre[q] != 0) out.vertices[v][q] = std::ldexp(plc.vertices[v][q] - n.centre[q], -n.exponent);
+  return out;
+}
+
+Point3 input_point(const Point3& p, const Normalisation& n) {
+  Point3 out = p;
+  for (int q = 0; q < 3; ++q) {
+    if (n.exponent != 0) out[q] = std::ldexp(out[q], n.exponent);
+    if (n.centre[q] != 0) out[q] += n.centre[q];
+  }
+  return out;
+}
+
+void analysis_to_input(Analysis& a, const Normalisation& n) {
+  for (double& f : a.lfs) f = std::ldexp(f, n.exponent);
+  for (Box* b : {&a.input_box, &a.bounding_box}) {
+    b->lo = input_point(b->lo, n);
+    b->hi = input_point(b->hi, n);
+  }
+}
+
+void analysis_to_normalised(Analysis& a, const Normalisation& n) {
+  for (double& f : a.lfs) f = std::ldexp(f, -n.exponent);
+  for (Box* b : {&a.input_box, &a.bounding_box})
+    for (int q = 0; q < 3; ++q)
+      for (double* x : {&b->lo[q], &b->hi[q]}) {
+        if (n.centre[q] != 0) *x -= n.centre[q];
+        if (n.exponent != 0) *x = std::ldexp(*x, -n.exponent);
+      }
+  if (n.translated()) a.bounding_box = grown_box(a.input_box, a.box_margin);
+}
+
+Box grown_box(const Box& input_box, double box_margin) {
+  const Box& b = input_box;
+  const double extent = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+  const double grow = box_margin * extent;
+  Box B;
+  for (int q = 0; q < 3; ++q) {
+    B.lo[q] = b.lo[q] - grow;
+    B.hi[q] = b.hi[q] + grow;
+  }
+  return B;
+}
+
 PLC scaled_plc(const PLC& plc, int s) {
   PLC out = plc;
   if (s != 0)
     for (Point3& p : out.vertices)
       for (double& x : p) x = std::ldexp(x, s);
   return out;
-}
-
-void scale_analysis(Analysis& a, int s) {
-  if (s == 0) return;
-  for (double& f : a.lfs) f = std::ldexp(f, s);
-  for (Box* b : {&a.input_box, &a.bounding_box})
-    for (int q = 0; q < 3; ++q) {
-      b->lo[q] = std::ldexp(b->lo[q], s);
-      b->hi[q] = std::ldexp(b->hi[q], s);
-    }
 }
 
 double plc_volume_scaled(const PLC& plc, int& exponent) {
@@ -92,31 +177,36 @@ std::string decimal_power(double v, int e) {
   return t;
 }
 
-void check_representable(const PLC& plc, int E, double box_margin) {
+void check_representable(const PLC& plc, const Normalisation& n, double box_margin) {
   if (plc.vertices.empty()) return;
   static const char* kAxis = "xyz";
   char text[400];
+  const int E = n.exponent;
   for (std::size_t v = 0; v < plc.vertices.size(); ++v)
     for (int q = 0; q < 3; ++q) {
-      const double x = plc.vertices[v][q];
+      const double x = plc.vertices[v][q] - n.centre[q];  // exact (normalisation)
       if (std::ldexp(std::ldexp(x, -E), E) != x) {
         std::snprintf(text, sizeof text,
                       "vertex %zu: coordinate %c = %.17g is too small beside the largest coordinate (about 2^%d): "
                       "scaled to the input's extent it is a subnormal number and would lose digits",
-                      v, kAxis[q], x, E);
+                      v, kAxis[q], plc.vertices[v][q], E);
         throw InputError(InputErrorKind::out_of_range, text);
       }
     }
-  // The boxes, in scaled coordinates (no overflow there), then in the input's.
+  // The boxes, in normalised coordinates (no overflow there), then in the
+  // input's (lo and hi are exact differences to c, see normalisation).
   Point3 lo = plc.vertices[0], hi = lo;
   for (const Point3& p : plc.vertices)
     for (int q = 0; q < 3; ++q) {
       lo[q] = std::min(lo[q], p[q]);
       hi[q] = std::max(hi[q], p[q]);
     }
+  Point3 los, his;  // normalised
   double extent = 0;
   for (int q = 0; q < 3; ++q) {
-    const double s = std::ldexp(hi[q], -E) - std::ldexp(lo[q], -E);
+    los[q] = std::ldexp(lo[q] - n.centre[q], -E);
+    his[q] = std::ldexp(hi[q] - n.centre[q], -E);
+    const double s = his[q] - los[q];
     extent = std::max(extent, s);
     if (!std::isfinite(std::ldexp(s, E))) {
       std::snprintf(text, sizeof text,
@@ -127,14 +217,14 @@ void check_representable(const PLC& plc, int E, double box_margin) {
   }
   const double grow = box_margin * extent;
   for (int q = 0; q < 3; ++q) {
-    const double a = std::ldexp(std::ldexp(lo[q], -E) - grow, E);
-    const double b = std::ldexp(std::ldexp(hi[q], -E) + grow, E);
+    const double a = std::ldexp(los[q] - grow, E) + n.centre[q];
+    const double b = std::ldexp(his[q] + grow, E) + n.centre[q];
     if (!std::isfinite(a) || !std::isfinite(b)) {
       std::snprintf(text, sizeof text,
                     "the bounding box B (the input's box grown by %g times its extent) reaches beyond the largest "
                     "double along %c (from %s to %s)",
-                    box_margin, kAxis[q], decimal_power(std::ldexp(lo[q], -E) - grow, E).c_str(),
-                    decimal_power(std::ldexp(hi[q], -E) + grow, E).c_str());
+                    box_margin, kAxis[q], decimal_power(los[q] - grow, E).c_str(),
+                    decimal_power(his[q] + grow, E).c_str());
       throw InputError(InputErrorKind::out_of_range, text);
     }
   }

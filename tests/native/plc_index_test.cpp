@@ -27,11 +27,11 @@ invariants::Input model(const std::string& name) {
   return invariants::load(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
 }
 
-/// The PLC analyze runs on, whose index it keeps: plc scaled by 2^-E
+/// The PLC analyze runs on, whose index it keeps: plc normalised
 /// (scaling.h).
 PLC analysed(const PLC& plc) {
-  const int E = normalisation_exponent(plc);
-  return E ? scaled_plc(plc, -E) : plc;
+  const Normalisation n = normalisation(plc);
+  return n.exponent != 0 || n.translated() ? normalised_plc(plc, n) : plc;
 }
 
 /// The index's incidence and frames, checked against the PLC itself.
@@ -154,23 +154,27 @@ void expect_same_index(const PlcIndex& a, const PlcIndex& b) {
 }
 
 TEST(PlcIndex, TheDomainReusesTheAnalysisIndexBitForBit) {
-  for (const double scale : {1.0, 0x1p40, 0x1p-30}) {
+  // Scaled by powers of two (exact), and moved far from the origin (the
+  // normalisation translates it).
+  for (const auto& [scale, offset] : {std::pair{1.0, 0.0}, {0x1p40, 0.0}, {0x1p-30, 0.0}, {1.0, 1e6}}) {
     for (const char* name : kModels) {
-      SCOPED_TRACE(std::string(name) + " scaled by " + std::to_string(scale));
+      SCOPED_TRACE(std::string(name) + " scaled by " + std::to_string(scale) + " moved by " + std::to_string(offset));
       invariants::Input in = model(name);
       for (Point3& p : in.plc.vertices)
-        for (double& x : p) x *= scale;  // exact: a power of two
+        for (double& x : p) x = x * scale + offset;
       const Analysis analysis = analyze(in.plc);
       ASSERT_TRUE(analysis.index);
-      // What mesh_polyhedron hands the domain: the PLC and analysis scaled
-      // by 2^-E (scaling.h), the index shared.
-      const int E = normalisation_exponent(in.plc);
+      // What mesh_polyhedron hands the domain: the PLC and analysis
+      // normalised (scaling.h), the index shared.
+      const Normalisation n = normalisation(in.plc);
+      const int E = n.exponent;
       if (scale != 1.0) EXPECT_NE(E, 0);
-      const PLC plc = E ? scaled_plc(in.plc, -E) : in.plc;
+      const PLC plc = E != 0 || n.translated() ? normalised_plc(in.plc, n) : in.plc;
       Analysis a = analysis;
-      scale_analysis(a, -E);
+      analysis_to_normalised(a, n);
       EXPECT_TRUE(a.index->built_from(plc)) << "the index is of the PLC the mesher meshes";
-      EXPECT_EQ(a.index->built_from(in.plc), E == 0);
+      EXPECT_EQ(n.translated(), offset != 0);
+      EXPECT_EQ(a.index->built_from(in.plc), E == 0 && !n.translated());
       const mesher::Domain reused(plc, a);
       Analysis bare = a;
       bare.index.reset();

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry.h"
+#include "test_support.h"
 #include "wqmesh/mesher.h"
 #include "wqmesh/quality.h"
 #include "wqmesh/report.h"
@@ -242,17 +243,7 @@ std::string star_prism_off(int tips) {
       const double a = geometry::kPi * k / tips, r = k % 2 ? 0.4 : 1.0;
       s += num(r * std::cos(a)) + " " + num(r * std::sin(a)) + " " + num(z) + "\n";
     }
-  s += std::to_string(m);
-  for (int k = m - 1; k >= 0; --k) s += " " + std::to_string(k);
-  s += "\n" + std::to_string(m);
-  for (int k = 0; k < m; ++k) s += " " + std::to_string(m + k);
-  s += "\n";
-  for (int i = 0; i < m; ++i) {
-    const int j = (i + 1) % m;
-    s += "4 " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(m + j) + " " +
-         std::to_string(m + i) + "\n";
-  }
-  return s;
+  return s + testing::prism_faces_off(m);
 }
 
 // A run stopped by the vertex limit before its facets are recovered: its

@@ -1,5 +1,6 @@
 // wqmesh: small helpers the native tests share (one copy each): reading a
-// whole file, and a two-tet mesh fixture for the writers and readers.
+// whole file, a two-tet mesh fixture for the writers and readers, and the
+// faces of a prism in OFF.
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 
@@ -35,6 +36,23 @@ inline TetMesh two_tets() {
   m.boundary = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 1, 4}}};
   m.boundary_facet = {0, 1, 2, 3, -1, 5};
   return m;
+}
+
+/// The face lines of an OFF prism over a polygon of n corners: the bottom
+/// 0..n-1 (counter-clockwise seen from above, so written reversed to face
+/// down), the top n..2n-1 above it, and the n side quads, all outwards.
+inline std::string prism_faces_off(int n) {
+  std::string s = std::to_string(n);
+  for (int k = n - 1; k >= 0; --k) s += " " + std::to_string(k);
+  s += "\n" + std::to_string(n);
+  for (int k = 0; k < n; ++k) s += " " + std::to_string(n + k);
+  s += "\n";
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    s += "4 " + std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(n + j) + " " +
+         std::to_string(n + i) + "\n";
+  }
+  return s;
 }
 
 }  // namespace wqmesh::testing

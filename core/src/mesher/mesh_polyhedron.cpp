@@ -206,27 +206,29 @@ static MeshResult mesh_normalised(const PLC& plc, const Analysis& analysis, cons
 
 MeshResult mesh_polyhedron(const PLC& plc, const Analysis& analysis, const MeshOptions& options,
                            const ProgressCallback& progress) {
-  // Beyond the paper: the run works on the input scaled by 2^-E (exact; see
-  // scaling.h), so that no formula of the mesher overflows or underflows, and
-  // every output length is scaled back by 2^E (weights by 2^2E, volumes by
-  // 2^3E): the input vertices come out at their exact input coordinates.
-  const int E = normalisation_exponent(plc);
+  // Beyond the paper: the run works on the input normalised (translated when
+  // far from the origin, scaled by 2^-E; exact, see scaling.h), so that no
+  // formula of the mesher overflows or underflows and a far input is meshed
+  // as at the origin, and every output is mapped back (points times 2^E plus
+  // the centre, lengths times 2^E, weights 2^2E, volumes 2^3E): the input
+  // vertices come out at their exact input coordinates.
+  const Normalisation n = normalisation(plc);
+  const int E = n.exponent;
   MeshResult r;
-  if (E == 0) {
+  if (E == 0 && !n.translated()) {
     r = mesh_normalised(plc, analysis, options, progress);
   } else {
-    const PLC scaled = scaled_plc(plc, -E);
+    const PLC normalised = normalised_plc(plc, n);
     Analysis a = analysis;
-    scale_analysis(a, -E);
+    analysis_to_normalised(a, n);
     MeshOptions o = options;
     o.max_size = std::ldexp(options.max_size, -E);
-    r = mesh_normalised(scaled, a, o, progress);
-    for (Point3& p : r.mesh.vertices)
-      for (double& x : p) x = std::ldexp(x, E);
+    r = mesh_normalised(normalised, a, o, progress);
+    for (Point3& p : r.mesh.vertices) p = input_point(p, n);
     for (double& w : r.mesh.weights) w = std::ldexp(w, 2 * E);
-    for (double& n : r.nearest_neighbour) n = std::ldexp(n, E);
+    for (double& d : r.nearest_neighbour) d = std::ldexp(d, E);
     for (ProtectingBall& b : r.protecting_balls) {
-      for (double& x : b.center) x = std::ldexp(x, E);
+      b.center = input_point(b.center, n);
       b.radius = std::ldexp(b.radius, E);
     }
     for (TetQuality& q : r.quality) {
