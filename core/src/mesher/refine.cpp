@@ -41,10 +41,18 @@ std::string Refine::input_feature(const Insertion& ins) const {
 
 void Refine::run() {
   // Beyond the paper: the runaway guard (WorkMeter::refine_insertion) sees
-  // every insertion of REFINE; it names the input feature of the last one.
-  const ScopedObserver scope(ins_, [this](const Insertion& ins, int rule, int id) {
+  // every insertion of REFINE; it names the input feature of the last one,
+  // and past its count cap weighs the new vertex's spacing against the
+  // smallest protecting ball (B's extent if there is none).
+  double smallest = 0;
+  for (int q = 0; q < 3; ++q) smallest = std::max(smallest, dom_.box.hi[q] - dom_.box.lo[q]);
+  for (const ProtectingBall& b : balls_.all())
+    if (b.radius > 0) smallest = std::min(smallest, b.radius);
+  const ScopedObserver scope(ins_, [this, smallest](const Insertion& ins, int rule, int id) {
     if (id < 0) return;
-    meter_.refine_insertion(static_cast<Rule>(rule), verts_.size(), [&] { return input_feature(ins); });
+    meter_.refine_insertion(
+        static_cast<Rule>(rule), verts_.size(), [&] { return input_feature(ins); },
+        [&] { return nearest_neighbour(tri_, id) / smallest; });
   });
   queues_.fill(true);
   if (!process_queues()) return;

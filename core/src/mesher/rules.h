@@ -57,6 +57,18 @@ struct Caps {
   /// (ii)); the cap turns that into a stop with a message.
   static constexpr int kBoundaryRunFactor = 16;
   static constexpr int kBoundaryRunSlack = 20000;
+  /// Past that cap a run goes on while every insertion keeps its distance to
+  /// its nearest neighbour at least kRunawaySpacing times the smallest
+  /// protecting ball's radius (B's extent without balls), up to
+  /// kBoundaryRunBackstop times the cap. A pair of facets at a small angle
+  /// next to a sharp edge whose protecting balls CONFORM made small (a nearly
+  /// flat facet fan at a 1.2-1.5-degree edge: BENCHMARKS.md, session 16, h2)
+  /// needs a long but finite run graded by the facets' gap outside the balls
+  /// (41,849-73,923 insertions from about 500 vertices, every point at least
+  /// 0.018 of the smallest ball's radius from its neighbours), while the
+  /// cascade of a missed sharp edge works at a fixed tiny scale.
+  static constexpr double kRunawaySpacing = 1e-4;
+  static constexpr int kBoundaryRunBackstop = 8;
 };
 
 }  // namespace wqmesh::mesher

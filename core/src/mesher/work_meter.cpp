@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesher/work_meter.h"
 
+#include <cstdio>
 #include <string>
 
 namespace wqmesh::mesher {
@@ -34,7 +35,8 @@ bool WorkMeter::poll(std::uint64_t units, bool in_step) {
   return stop_reason_.empty();
 }
 
-bool WorkMeter::refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where) {
+bool WorkMeter::refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where,
+                                 const std::function<double()>& spacing) {
   if (rule != Rule::rule4_split_encroached_subsegment && rule != Rule::rule5_split_encroached_subfacet) {
     boundary_run_ = 0;
     return stop_reason_.empty();
@@ -45,19 +47,29 @@ bool WorkMeter::refine_insertion(Rule rule, std::size_t vertices, const std::fun
   }
   if (rule == Rule::rule5_split_encroached_subfacet) ++boundary_run_rule5_;
   const std::size_t cap = std::size_t(Caps::kBoundaryRunFactor) * boundary_run_start_ + Caps::kBoundaryRunSlack;
-  if (boundary_run_ > cap && stop_reason_.empty()) {
-    cap_reached();
-    stop_reason_ = "stalled";
-    stop_message_ = "a runaway in refine: rules 4 and 5 inserted " + std::to_string(boundary_run_) +
-                    " points in a row (rule 5: " + std::to_string(boundary_run_rule5_) +
-                    ", rule 4: " + std::to_string(boundary_run_ - boundary_run_rule5_) +
-                    ") without a rule-6 or rule-7 insertion, more than " + std::to_string(Caps::kBoundaryRunFactor) +
-                    " times the " + std::to_string(boundary_run_start_) + " vertices before them plus " +
-                    std::to_string(Caps::kBoundaryRunSlack) + "; the last on " + where() +
-                    " (an angle below 90 degrees between two input elements left without protecting balls "
-                    "splits their subfacets without end): the runaway guard ended the run";
-  }
-  return stop_reason_.empty();
+  if (boundary_run_ <= cap || !stop_reason_.empty()) return stop_reason_.empty();
+  // Past the cap: a run that keeps its points apart (a finite refinement
+  // graded by a small angle's gap) goes on, up to the backstop.
+  const double ratio = spacing();
+  const bool backstop = boundary_run_ > std::size_t(Caps::kBoundaryRunBackstop) * cap;
+  if (!backstop && ratio >= Caps::kRunawaySpacing) return true;
+  char why[160];
+  if (backstop)
+    std::snprintf(why, sizeof why, "%d times that", Caps::kBoundaryRunBackstop);
+  else
+    std::snprintf(why, sizeof why, "then a point %.2g times the smallest protecting ball's radius from its neighbours",
+                  ratio);
+  cap_reached();
+  stop_reason_ = "stalled";
+  stop_message_ = "a runaway in refine: rules 4 and 5 inserted " + std::to_string(boundary_run_) +
+                  " points in a row (rule 5: " + std::to_string(boundary_run_rule5_) +
+                  ", rule 4: " + std::to_string(boundary_run_ - boundary_run_rule5_) +
+                  ") without a rule-6 or rule-7 insertion, more than " + std::to_string(Caps::kBoundaryRunFactor) +
+                  " times the " + std::to_string(boundary_run_start_) + " vertices before them plus " +
+                  std::to_string(Caps::kBoundaryRunSlack) + ", " + why + "; the last on " + where() +
+                  " (an angle below 90 degrees between two input elements left without protecting balls "
+                  "splits their subfacets without end): the runaway guard ended the run";
+  return false;
 }
 
 RegularTriangulation::CellGraph WorkMeter::scan_cell_graph(const RegularTriangulation& tri) {

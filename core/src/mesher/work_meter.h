@@ -87,13 +87,19 @@ class WorkMeter {
 
   /// Beyond the paper: the runaway guard of REFINE. Takes every insertion of
   /// REFINE (its rule; `vertices`: V's size after it). Rules 4 and 5 extend
-  /// the current run of boundary insertions, rules 6 and 7 end it. A run
-  /// longer than Caps::kBoundaryRunFactor times V's size before its first
-  /// insertion, plus Caps::kBoundaryRunSlack, stops the run with stopped =
-  /// "stalled", counts a cap in caps_reached, and sets a stop message naming
-  /// the rules, the counts and `where()` (the last insertion's input feature,
-  /// called only then). Returns false once the run must stop.
-  bool refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where);
+  /// the current run of boundary insertions, rules 6 and 7 end it. Once a run
+  /// is longer than Caps::kBoundaryRunFactor times V's size before its first
+  /// insertion, plus Caps::kBoundaryRunSlack (the cap), each further
+  /// insertion of it asks `spacing()` (called only then: the inserted
+  /// vertex's distance to its nearest neighbour over the smallest protecting
+  /// ball's radius); the first below Caps::kRunawaySpacing, or the run
+  /// reaching Caps::kBoundaryRunBackstop times the cap, stops the run with
+  /// stopped = "stalled", counts a cap in caps_reached, and sets a stop
+  /// message naming the rules, the counts and `where()` (the last
+  /// insertion's input feature, called only then). Returns false once the
+  /// run must stop.
+  bool refine_insertion(Rule rule, std::size_t vertices, const std::function<std::string()>& where,
+                        const std::function<double()>& spacing);
 
  private:
   void report_progress();
