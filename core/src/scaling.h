@@ -43,8 +43,9 @@ constexpr int kTranslationGainBits = 3;
 /// the last place of that axis's largest absolute coordinate, kept only when
 /// x - c is exact for every coordinate x on the axis (else 0 there); the
 /// centre is used only when it lowers the exponent by kTranslationGainBits
-/// or more (the input lies far from the origin against its extent: by more
-/// than about 4 times its half extent), else it is 0 and E is
+/// or more (the input lies far from the origin against its extent: its
+/// box's centre 3 to 7 half extents or more away, as the exponents are whole
+/// numbers), else it is 0 and E is
 /// normalisation_exponent(plc): inputs near the origin keep the meshes they
 /// had before the translation existed. Pure function of the coordinates:
 /// analyze and mesh_polyhedron find the same map.
