@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
@@ -1649,6 +1650,157 @@ TEST(Improve, AMinSineAboveSineAboveShowsTheSmallestAngleAbove) {
   // shortcut is not vacuous (about a quarter with this seed: half of the
   // random tets are flat, and a probe at d itself is never shown).
   EXPECT_GT(shown, probes / 5) << shown << " of " << probes;
+}
+
+// Multi-face removal's bound (improve_faces.cpp, sandwich_value; issue 14,
+// the phase's time): the programme that stops at subtrees whose worst
+// cannot beat the least old tet of the grown tree makes the same choice as
+// the full programme (the same answer and, when it is yes, the same old and
+// new tets in the same order), from every interior face of the models'
+// meshes before and after the phase and of random sandwiches: a polygon fan
+// of 4 to 9 jittered points between two jittered apexes, so that trees of
+// several faces and both answers occur.
+TEST(Improve, MultiFaceRemovalsBoundChoosesAsTheFullProgramme) {
+  std::size_t yes = 0, no = 0;
+  auto compare = [&](Improver& im, const std::string& where) {
+    std::vector<int> old_b, old_f;
+    std::vector<Improver::Tet> fresh_b, fresh_f;
+    for (int t = 0; t < int(im.tets().size()); ++t)
+      for (int k = 0; k < 4 && im.alive(t); ++k) {
+        const bool b = im.remove_faces_choice(t, k, true, old_b, fresh_b);
+        const bool f = im.remove_faces_choice(t, k, false, old_f, fresh_f);
+        ASSERT_EQ(b, f) << where << ": tet " << t << " face " << k;
+        EXPECT_EQ(old_b, old_f) << where << ": tet " << t << " face " << k;
+        EXPECT_EQ(fresh_b, fresh_f) << where << ": tet " << t << " face " << k;
+        (f ? yes : no) += 1;
+      }
+  };
+  for (const std::string& f : models_and({"slit-1.off", "wedge-1.off"})) {
+    SCOPED_TRACE(f);
+    const auto run = unimproved(f);
+    compare(*run->im, "before the phase");
+    ASSERT_TRUE(run->im->run());
+    compare(*run->im, "after the phase");
+  }
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> jitter(-1, 1);
+  const std::size_t models_yes = yes;
+  for (int i = 0; i < 3000; ++i) {
+    Config c;
+    const int n = 4 + i % 6;
+    for (int j = 0; j < n; ++j) {
+      const double r = 1 + 0.4 * jitter(rng), phi = 2 * geometry::kPi * (j + 0.3 * jitter(rng)) / n;
+      c.r.mesh.vertices.push_back({{r * std::cos(phi), r * std::sin(phi), 0.15 * jitter(rng)}});
+    }
+    const int a = n, b = n + 1;
+    c.r.mesh.vertices.push_back({{0.4 * jitter(rng), 0.4 * jitter(rng), 0.05 + 0.5 * (1 + jitter(rng))}});
+    c.r.mesh.vertices.push_back({{0.4 * jitter(rng), 0.4 * jitter(rng), -0.05 - 0.5 * (1 + jitter(rng))}});
+    for (int j = 1; j + 1 < n; ++j)
+      for (int apex : {a, b}) c.add_tet(0, j, j + 1, apex);
+    c.close();
+    Improver im(c.r, 2.2, 0);
+    compare(im, "random sandwich " + std::to_string(i));
+  }
+  // Both answers occur, among the random sandwiches too (so the bound is
+  // tried where the programme chooses).
+  std::printf("[ choices  ] %zu yes (%zu on the models), %zu no\n", yes, models_yes, no);
+  EXPECT_GT(yes, models_yes) << yes << " yes, " << no << " no";
+  EXPECT_GT(no, 0u);
+}
+
+// min_sine_if_positive() (the phase's time, issue 14: the rules that refuse
+// every min-sine at most 0 skip the rest of an inverted tet's): min_sine()
+// bit for bit on every tet where min_sine() is positive, and otherwise a
+// value at most 0 where min_sine() is at most 0 too; on the tets of the
+// models before the phase and on random ones, positive, inverted, flat and
+// degenerate (a point repeated).
+TEST(Improve, MinSineIfPositiveIsMinSineWhereItIsPositive) {
+  std::vector<std::array<Point3, 4>> tets;
+  for (const std::string& f : models_and({"slit-1.off", "wedge-1.off"})) {
+    const auto run = unimproved(f);
+    const Improver& im = *run->im;
+    for (const auto& T : im.tets())
+      tets.push_back({{im.points()[T[0]], im.points()[T[1]], im.points()[T[2]], im.points()[T[3]]}});
+  }
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> coord(-1, 1);
+  for (int i = 0; i < 20000; ++i) {
+    std::array<Point3, 4> p;
+    for (auto& x : p) x = Point3{{coord(rng), coord(rng), i % 3 == 1 ? 1e-9 * coord(rng) : coord(rng)}};
+    if (i % 7 == 0) p[3] = p[i % 3];  // degenerate
+    tets.push_back(p);
+  }
+  std::size_t positive = 0, shortcut = 0;
+  for (const auto& p : tets) {
+    const double m = min_sine(p[0], p[1], p[2], p[3]), v = mesher::min_sine_if_positive(p[0], p[1], p[2], p[3]);
+    if (m > 0) {
+      ++positive;
+      ASSERT_EQ(std::memcmp(&m, &v, sizeof m), 0) << m << " " << v;
+    } else if (std::memcmp(&m, &v, sizeof m) != 0) {
+      ++shortcut;
+      ASSERT_LE(v, 0) << m;
+      ASSERT_LE(m, 0) << v;
+    }
+  }
+  EXPECT_GT(positive, tets.size() / 4);
+  EXPECT_GT(shortcut, tets.size() / 4);  // the random tets are inverted half the time
+}
+
+// The class guard's near() with the circumcenter that shape() computed (the
+// phase's time, issue 14: classes_change() computed it twice): the same
+// shape and the same class as without, on every tet of the models near
+// small input angles, before and after the phase, with their protecting
+// balls and the phase's L_v.
+TEST(Improve, NearWithTheShapesCircumcenterIsNearWithoutIt) {
+  std::size_t bad = 0, near = 0;
+  for (const std::string& f : models_and({"slit-1.off", "wedge-1.off"})) {
+    SCOPED_TRACE(f);
+    const auto run = unimproved(f);
+    Improver& im = *run->im;
+    const mesher::TetClassifier c(run->balls, run->opt.rho0, run->opt.theta_deg);
+    for (int stage = 0; stage < 2; ++stage) {
+      const auto& P = im.points();
+      for (int t = 0; t < int(im.tets().size()); ++t) {
+        if (!im.alive(t)) continue;
+        const auto& T = im.tets()[t];
+        const double q = min_sine(P[T[0]], P[T[1]], P[T[2]], P[T[3]]);
+        Point3 center;
+        const auto s = c.shape(P[T[0]], P[T[1]], P[T[2]], P[T[3]], q, center);
+        ASSERT_EQ(int(s), int(c.shape(P[T[0]], P[T[1]], P[T[2]], P[T[3]], q)));
+        if (s == mesher::TetClassifier::Shape::good) continue;
+        ++bad;
+        const std::array<double, 4> L2{
+            {im.shortest_edge2(T[0]), im.shortest_edge2(T[1]), im.shortest_edge2(T[2]), im.shortest_edge2(T[3])}};
+        const TetClass with = c.classify(s, P[T[0]], P[T[1]], P[T[2]], P[T[3]], L2, &center);
+        ASSERT_EQ(int(with), int(c.classify(s, P[T[0]], P[T[1]], P[T[2]], P[T[3]], L2))) << "stage " << stage;
+        near += with != TetClass::violation;
+      }
+      if (stage == 0) ASSERT_TRUE(im.run());
+    }
+  }
+  EXPECT_GT(bad, 0u);
+  EXPECT_GT(near, 0u);
+  // Random small tets among random balls (L_v 0: only the balls' doubled
+  // spheres count for (b)), so that the circumcenter often decides alone.
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> coord(-1, 1);
+  std::vector<ProtectingBall> balls(300);
+  for (auto& b : balls) b.center = {{coord(rng), coord(rng), coord(rng)}}, b.radius = 0.03;
+  const mesher::ProtectingBalls index = index_of(balls);
+  const mesher::TetClassifier c(index, 2.2, 3);
+  std::size_t yes = 0, no = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Point3 o{{coord(rng), coord(rng), coord(rng)}};
+    std::array<Point3, 4> p;
+    for (auto& x : p) x = geometry::add(o, Point3{{0.1 * coord(rng), 0.1 * coord(rng), 0.1 * coord(rng)}});
+    Point3 center;
+    c.shape(p[0], p[1], p[2], p[3], min_sine(p[0], p[1], p[2], p[3]), center);
+    const bool with = c.near(p[0], p[1], p[2], p[3], {{0, 0, 0, 0}}, &center);
+    ASSERT_EQ(with, c.near(p[0], p[1], p[2], p[3], {{0, 0, 0, 0}})) << i;
+    (with ? yes : no) += 1;
+  }
+  EXPECT_GT(yes, 100u);
+  EXPECT_GT(no, 100u);
 }
 
 TEST(Improve, CancelDuringThePhaseReturnsNoMesh) {

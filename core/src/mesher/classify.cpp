@@ -79,7 +79,8 @@ TetClassifier::Shape TetClassifier::shape(double radius_edge, double min_dihedra
 }
 
 TetClassifier::Shape TetClassifier::shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                                          double min_sine) const {
+                                          double min_sine, Point3& center) const {
+  center = {{NAN, NAN, NAN}};
   // Estimates first (R^2 / l^2 from geometry::circumcenter, the min-sine),
   // trusted when they are farther from their threshold than their rounding
   // bound; tet_quality's own measures otherwise.
@@ -91,7 +92,7 @@ TetClassifier::Shape TetClassifier::shape(const Point3& a, const Point3& b, cons
   bool skinny = false, decided = false;
   if (std::isfinite(m) && l2 > 0) {
     double r2;
-    circumcenter(a, b, c, d, r2);
+    center = circumcenter(a, b, c, d, r2);
     const double level = rho0_ * rho0_ * l2;
     if (std::isfinite(r2) && r2 > level * (1 + 4 * m)) skinny = decided = true;
     if (std::isfinite(r2) && r2 < level * (1 - 4 * m)) decided = true;
@@ -103,9 +104,10 @@ TetClassifier::Shape TetClassifier::shape(const Point3& a, const Point3& b, cons
 }
 
 bool TetClassifier::near(const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                         const std::array<double, 4>& L2) const {
+                         const std::array<double, 4>& L2, const Point3* center) const {
   double r2;
-  if (balls_.contains(circumcenter(a, b, c, d, r2))) return true;  // (a)
+  const bool known = center != nullptr && !std::isnan((*center)[0]);
+  if (balls_.contains(known ? *center : circumcenter(a, b, c, d, r2))) return true;  // (a)
   const Point3* p[4] = {&a, &b, &c, &d};
   for (int k = 0; k < 4; ++k)  // (b)
     if (balls_.expansion_encroached(*p[k], L2[k] / 9)) return true;

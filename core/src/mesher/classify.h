@@ -66,16 +66,27 @@ class TetClassifier {
   /// threshold. `min_sine`: the smallest sine of abcd's dihedral angles
   /// (improve.h's min_sine), which spares the angles when it is clearly
   /// above sin(theta).
-  Shape shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double min_sine) const;
+  Shape shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double min_sine) const {
+    Point3 center;
+    return shape(a, b, c, d, min_sine, center);
+  }
+  /// The same shape; `center` gets abcd's circumcenter (geometry::circumcenter)
+  /// when the estimate computed it, else NaNs, for near() (the phase's time,
+  /// issue 14: the class guard computed it twice).
+  Shape shape(const Point3& a, const Point3& b, const Point3& c, const Point3& d, double min_sine,
+              Point3& center) const;
   /// Near a small input angle: (a) or (b) of the definition above; L2[k] is
   /// L_v^2 of the k-th vertex (its squared shortest edge in the mesh).
-  bool near(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const std::array<double, 4>& L2) const;
+  /// `center`, when given and not NaN, is abcd's circumcenter as
+  /// geometry::circumcenter(a, b, c, d) gives it (shape()'s).
+  bool near(const Point3& a, const Point3& b, const Point3& c, const Point3& d, const std::array<double, 4>& L2,
+            const Point3* center = nullptr) const;
   /// The class of a tet of shape s: good, or near (skinny_near, sliver_near)
   /// or a violation.
   TetClass classify(Shape s, const Point3& a, const Point3& b, const Point3& c, const Point3& d,
-                    const std::array<double, 4>& L2) const {
+                    const std::array<double, 4>& L2, const Point3* center = nullptr) const {
     if (s == Shape::good) return TetClass::good;
-    if (!near(a, b, c, d, L2)) return TetClass::violation;
+    if (!near(a, b, c, d, L2, center)) return TetClass::violation;
     return s == Shape::skinny ? TetClass::skinny_near : TetClass::sliver_near;
   }
 

@@ -67,10 +67,16 @@ void radius_edge(const Point3& a, const Point3& b, const Point3& c, const Point3
 
 }  // namespace
 
-double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+namespace {
+
+/// min_sine()'s arithmetic; with kStopInverted, a determinant at most 0
+/// returns 0 (min_sine_if_positive()).
+template <bool kStopInverted>
+double min_sine_of(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
   const Point3 u = sub(b, a), v = sub(c, a), w = sub(d, a), x = sub(c, b), y = sub(d, b), z = sub(d, c);
   const Point3 m1 = cross(v, w);
   const double D = dot(u, m1);  // 6 V
+  if (kStopInverted && D <= 0) return 0;
   // Squared area normals; one square root at the end.
   const double n0 = dot(cross(x, y), cross(x, y)), n1 = dot(m1, m1), n2 = dot(cross(u, w), cross(u, w)),
                n3 = dot(cross(u, v), cross(u, v));
@@ -80,6 +86,16 @@ double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3&
   const double s2 =
       std::min({dot(u, u) / p23, dot(v, v) / p13, dot(w, w) / p12, dot(x, x) / p03, dot(y, y) / p02, dot(z, z) / p01});
   return D * std::sqrt(s2);
+}
+
+}  // namespace
+
+double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return min_sine_of<false>(a, b, c, d);
+}
+
+double min_sine_if_positive(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return min_sine_of<true>(a, b, c, d);
 }
 
 Improver::Improver(MeshResult& r, double rho, double max_size, const std::function<bool()>& keep_going)
@@ -104,49 +120,54 @@ Improver::Improver(MeshResult& r, double rho, double max_size, const std::functi
   for (std::size_t v = 0; v < P_.size() && v < r.input_vertex.size(); ++v)
     if (r.input_vertex[v] >= 0) fixed_[v] = 1;
   // Face adjacency: each oriented face meets its reverse in the neighbour.
-  struct Face {
-    Tri key;  ///< the face's vertices, sorted (unoriented)
-    int tet, k;
-  };
-  auto unoriented = [](Tri f) {
+  // Face i is face k of tet t for i = 4 t + k, boundary triangle b for i =
+  // 4 T + b (T tets); its key is its vertices sorted (unoriented).
+  const std::size_t tet_faces = 4 * tets_.size(), nfaces = tet_faces + bnd_.size();
+  const auto face_key = [&](std::size_t i) {
+    Tri f = i < tet_faces ? Tri{{tets_[i / 4][kOutward[i % 4][0]], tets_[i / 4][kOutward[i % 4][1]],
+                                 tets_[i / 4][kOutward[i % 4][2]]}}
+                          : bnd_[i - tet_faces];
     std::sort(f.begin(), f.end());
     return f;
   };
-  std::vector<Face> faces;
-  faces.reserve(4 * tets_.size() + bnd_.size());
   for (std::size_t t = 0; t < tets_.size(); ++t)
-    for (int k = 0; k < 4; ++k) {
-      faces.push_back({unoriented(outward_face(tets_[t], k)), int(t), k});
-      vtet_[tets_[t][k]] = int(t);
-    }
-  for (std::size_t b = 0; b < bnd_.size(); ++b) faces.push_back({unoriented(bnd_[b]), -1 - int(b), -1});
+    for (int k = 0; k < 4; ++k) vtet_[tets_[t][k]] = int(t);
   // The faces in the order of a stable sort by key. The phase's time (issue
   // 14; the same order): below 2^21 vertices a sorted face packs into 63
-  // bits, and (packed key, index) pairs sort to that order at once.
-  std::vector<std::pair<std::uint64_t, int>> order(faces.size());
-  if (P_.size() < (std::size_t(1) << 21)) {
-    for (std::size_t i = 0; i < faces.size(); ++i) {
-      const Tri& f = faces[i].key;
+  // bits, and (packed key, index) pairs sort to that order at once; the keys
+  // are made from the tets as they are packed (no array of faces).
+  const bool packed = P_.size() < (std::size_t(1) << 21);
+  std::vector<std::pair<std::uint64_t, int>> order(nfaces);
+  std::vector<Tri> keys;  // above 2^21 vertices: the keys, sorted stably
+  if (packed) {
+    for (std::size_t i = 0; i < nfaces; ++i) {
+      const Tri f = face_key(i);
       order[i] = {std::uint64_t(f[0]) << 42 | std::uint64_t(f[1]) << 21 | std::uint64_t(f[2]), int(i)};
     }
     std::sort(order.begin(), order.end());
   } else {
-    for (std::size_t i = 0; i < faces.size(); ++i) order[i] = {0, int(i)};
+    keys.resize(nfaces);
+    for (std::size_t i = 0; i < nfaces; ++i) keys[i] = face_key(i), order[i] = {0, int(i)};
     std::stable_sort(order.begin(), order.end(),
-                     [&faces](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
-                       return faces[a.second].key < faces[b.second].key;
+                     [&keys](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) {
+                       return keys[std::size_t(a.second)] < keys[std::size_t(b.second)];
                      });
   }
+  // The tet of face i (its slot: i % 4), or -1 - b for boundary triangle b.
+  const auto face_tet = [&](int i) {
+    return std::size_t(i) < tet_faces ? i / 4 : -1 - int(std::size_t(i) - tet_faces);
+  };
   // A face with neither a neighbour nor a boundary triangle (a mesh that is
   // not closed) gets the code -1 - bnd_.size(), which names no triangle: it
   // is never flipped and its vertices never move.
   const int kOpen = -1 - int(bnd_.size());
   nb_.assign(tets_.size(), {{kOpen, kOpen, kOpen, kOpen}});
-  for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
-    const Face &a = faces[order[i].second], &b = faces[order[i + 1].second];
-    if (a.key != b.key) continue;
-    if (a.tet >= 0) nb_[a.tet][a.k] = b.tet;
-    if (b.tet >= 0) nb_[b.tet][b.k] = a.tet;
+  for (std::size_t i = 0; i + 1 < nfaces; ++i) {
+    const int a = order[i].second, b = order[i + 1].second;
+    if (packed ? order[i].first != order[i + 1].first : keys[std::size_t(a)] != keys[std::size_t(b)]) continue;
+    const int ta = face_tet(a), tb = face_tet(b);
+    if (ta >= 0) nb_[ta][a % 4] = tb;
+    if (tb >= 0) nb_[tb][b % 4] = ta;
     ++i;
   }
   for (std::size_t t = 0; t < tets_.size(); ++t)
@@ -215,8 +236,9 @@ double Improver::worst() const {
   return w;
 }
 
-void Improver::star(int v, std::vector<int>& out) const {
+void Improver::star(int v, std::vector<int>& out, std::vector<int>* outer) const {
   out.clear();
+  if (outer) outer->clear();
   const int s = v < int(vtet_.size()) ? vtet_[v] : -1;
   if (s < 0 || !alive(s) || !has(s, v)) return;
   star_marks_.reset(tets_.size());
@@ -230,6 +252,8 @@ void Improver::star(int v, std::vector<int>& out) const {
       if (n >= 0 && !star_marks_.has(n)) {
         star_marks_.put(n);
         out.push_back(n);
+      } else if (n < 0 && outer) {
+        outer->push_back(n);
       }
     }
   }
@@ -490,11 +514,12 @@ int Improver::classes_change(const std::vector<int>& old, const ClassesBefore& b
   for (std::size_t i = 0; i < fresh.size(); ++i) {
     const Tet& T = fresh[i];
     const double q = fresh_q ? (*fresh_q)[i] : min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
-    const TetClassifier::Shape sh = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q);
+    Point3 center;  // the shape's circumcenter, for near()
+    const TetClassifier::Shape sh = classifier_->shape(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], q, center);
     if (sh == TetClassifier::Shape::good) continue;
     violations += classifier_->classify(sh, P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]],
-                                        {{l2_after(T[0]), l2_after(T[1]), l2_after(T[2]), l2_after(T[3])}}) ==
-                  TetClass::violation;
+                                        {{l2_after(T[0]), l2_after(T[1]), l2_after(T[2]), l2_after(T[3])}},
+                                        &center) == TetClass::violation;
   }
   // The tets outside `old` of a bad shape at a vertex whose L_v changes.
   int allowed = before.violations;
@@ -556,8 +581,14 @@ bool Improver::accept(const std::vector<int>& old, const std::vector<Tet>& fresh
   worst_new = HUGE_VAL;
   std::vector<double>& fresh_q = accept_q_;
   fresh_q.clear();
+  // The phase's time (issue 14): where the rule refuses a new worst of 0 it
+  // refuses every value at most 0 (beats() only grows with worst_new), so an
+  // inverted new tet's min-sine need not be finished (fresh_q and worst_new
+  // matter only when the change passes).
+  const bool zero_refused = !beats(0, worst_old);
   for (const Tet& T : fresh) {
-    fresh_q.push_back(min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
+    fresh_q.push_back(zero_refused ? min_sine_if_positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])
+                                   : min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]));
     worst_new = std::min(worst_new, fresh_q.back());
     if (!beats(worst_new, worst_old)) return false;
   }
@@ -630,7 +661,24 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
       std::sort(f.sorted.begin(), f.sorted.end());
       faces.push_back(f);
     }
-  std::sort(faces.begin(), faces.end(), [](const ReplaceFace& a, const ReplaceFace& b) { return a.sorted < b.sorted; });
+  // The new faces by their sorted vertices (faces of one key next to each
+  // other; which comes first among them changes nothing below). The
+  // phase's time (issue 14): below 2^21 vertices by the key packed into 63
+  // bits, as the constructor sorts the faces.
+  std::vector<std::pair<std::uint64_t, int>>& by_sorted = replace_sorted_;
+  by_sorted.resize(faces.size());
+  if (P_.size() < (std::size_t(1) << 21)) {
+    for (std::size_t x = 0; x < faces.size(); ++x) {
+      const Tri& f = faces[x].sorted;
+      by_sorted[x] = {std::uint64_t(f[0]) << 42 | std::uint64_t(f[1]) << 21 | std::uint64_t(f[2]), int(x)};
+    }
+    std::sort(by_sorted.begin(), by_sorted.end());
+  } else {
+    std::sort(faces.begin(), faces.end(),
+              [](const ReplaceFace& a, const ReplaceFace& b) { return a.sorted < b.sorted; });
+    for (std::size_t x = 0; x < faces.size(); ++x) by_sorted[x] = {0, int(x)};
+  }
+  const auto face = [&](std::size_t x) -> const ReplaceFace& { return faces[std::size_t(by_sorted[x].second)]; };
   std::vector<int>& by_key = replace_by_key_;
   by_key.resize(outer.size());
   for (std::size_t o = 0; o < outer.size(); ++o) by_key[o] = int(o);
@@ -640,13 +688,14 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
   link.assign(fresh.size(), {{0, 0, 0, 0}});
   for (std::size_t x = 0; x < faces.size();) {
     std::size_t y = x + 1;
-    while (y < faces.size() && faces[y].sorted == faces[x].sorted) ++y;
+    while (y < faces.size() && face(y).sorted == face(x).sorted) ++y;
     if (y - x == 2) {
-      if (faces[x + 1].key != reversed(faces[x].key)) return false;
-      link[faces[x].i][faces[x].k] = faces[x + 1].i;
-      link[faces[x + 1].i][faces[x + 1].k] = faces[x].i;
+      const ReplaceFace &f = face(x), &g = face(x + 1);
+      if (g.key != reversed(f.key)) return false;
+      link[f.i][f.k] = g.i;
+      link[g.i][g.k] = f.i;
     } else if (y - x == 1) {
-      const Tri& key = faces[x].key;
+      const Tri& key = face(x).key;
       auto it = std::upper_bound(by_key.begin(), by_key.end(), key,
                                  [&outer](const Tri& k, int o) { return k < outer[o].key; });
       int found = -1;
@@ -659,7 +708,7 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
       }
       if (found < 0) return false;
       outer[found].used = true;
-      link[faces[x].i][faces[x].k] = -1 - found;
+      link[face(x).i][face(x).k] = -1 - found;
     } else {
       return false;
     }
@@ -696,7 +745,10 @@ bool Improver::replace(const std::vector<int>& old, const std::vector<Tet>& fres
     }
     const Tet& T = fresh[i];
     tets_[id[i]] = T;
-    q_[id[i]] = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    // A judged change: accept() has computed each new tet's min-sine at these
+    // points (accept_q_, in fresh's order; the same values).
+    q_[id[i]] =
+        judged && accept_q_.size() == fresh.size() ? accept_q_[i] : min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
     forget_dihedral(id[i]);
     for (int v : T) vtet_[v] = id[i];
   }
@@ -760,11 +812,17 @@ bool Improver::remove_edge(int t, int i, int j) {
   // other stays at most worst_old; the cuts followed from an accepted
   // triangulation are those of before.
   const double prune = fixing_ ? -HUGE_VAL : worst_old;
+  // A tet whose min-sine is at most 0 <= prune gives an option at most
+  // prune, decided by any value at most prune (min_sine_if_positive).
+  const bool zero_pruned = prune >= 0;
+  const auto sine = [&](const Point3& p, const Point3& q, const Point3& r, const Point3& s) {
+    return zero_pruned ? min_sine_if_positive(p, q, r, s) : min_sine(p, q, r, s);
+  };
   auto tri = [&](int x, int y, int z) {
     const Point3 &p = P_[rv[x]], &q = P_[rv[y]], &r = P_[rv[z]];
-    const double first = min_sine(p, q, r, P_[b]);
+    const double first = sine(p, q, r, P_[b]);
     if (first <= prune) return first;
-    return std::min(first, min_sine(r, q, p, P_[a]));
+    return std::min(first, sine(r, q, p, P_[a]));
   };
   double best[kMaxRing][kMaxRing];
   int cut[kMaxRing][kMaxRing];
@@ -876,10 +934,18 @@ double Improver::ascend(int v, const std::vector<Tet>& tets, double current, dou
   // The worst at x if it beats `current` (qx then holds every tet's
   // quality), else some value <= current: the scan stops at the first tet
   // that does not beat it, worst first (std::min skips a NaN, as before).
+  // An inverted tet at x ends the scan when current >= 0: its
+  // min_sine_if_positive() is at most 0 <= current (the phase's time, issue
+  // 14; qx is read only when every tet beats current, so exact then).
   auto worst_at = [&](const Point3& x) {
     double w = HUGE_VAL;
+    const bool zero_fails = current >= 0;
     for (int i : order) {
-      w = std::min(w, qx[i] = quality_at(tets[i], x));
+      const Tet& T = tets[i];
+      Point3 p[4];
+      for (int k = 0; k < 4; ++k) p[k] = T[k] == v ? x : P_[T[k]];
+      w = std::min(
+          w, qx[i] = zero_fails ? min_sine_if_positive(p[0], p[1], p[2], p[3]) : min_sine(p[0], p[1], p[2], p[3]));
       if (w <= current) return w;
     }
     return w;
@@ -1284,7 +1350,9 @@ bool Improver::run() {
     std::vector<int> list;
     for (std::size_t t = 0; t < tets_.size(); ++t)
       if (alive(int(t)) && q_[t] < below) list.push_back(int(t));
-    std::stable_sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b]; });
+    // The order of a stable sort by q_ (the list's tets are in increasing
+    // order and their q_ below `below`, so none is NaN): ties by index.
+    std::sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b] || (q_[a] == q_[b] && a < b); });
     return list;
   };
   auto flips = [&]() {

@@ -202,6 +202,11 @@ constexpr double kCoarsenRiseDeg = 1, kCoarsenStallDeg = 1.5;
 /// 6 V l_ij / (|n_k| |n_l|), n_k the area normal of the face opposite k);
 /// negative when abcd is negatively oriented, 0 when a face is degenerate.
 double min_sine(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+/// min_sine(a, b, c, d), bit for bit, when abcd's orientation determinant
+/// (as min_sine() computes it) is positive; else some value at most 0 (the
+/// min-sine is then at most 0 too) without the rest of the work. The
+/// phase's time (issue 14): for callers that refuse every value at most 0.
+double min_sine_if_positive(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
 
 /// The improvement phase on an extracted mesh (r.mesh: vertices, tets,
 /// boundary triangles with their facets; r.nearest_neighbour, r.input_vertex,
@@ -334,14 +339,19 @@ class Improver {
   /// call of accept() or classes_change() was an accept() of exactly this
   /// change (the same old and fresh, at the same points) that returned true;
   /// the L_v after it that its class guard computed are then taken (after_;
-  /// the phase's time, issue 14: the same values as learn()'s star walks).
+  /// the phase's time, issue 14: the same values as learn()'s star walks),
+  /// and the new tets' min-sines it computed (accept_q_: the same values).
   bool replace(const std::vector<int>& old, const std::vector<Tet>& fresh,
                const std::vector<std::pair<int, std::array<int, 3>>>& boundary = {}, int vanishing = -1,
                bool judged = false);
   bool has(int t, int v) const;
   int slot(int t, int v) const;
-  /// The tets around v (its star), from vtet_; empty if v has none.
-  void star(int v, std::vector<int>& out) const;
+  /// The tets around v (its star), from vtet_; empty if v has none. With
+  /// `outer`, it also gets the codes nb_[t][k] < 0 (boundary triangles, or
+  /// an open face) of the faces of the star's tets that hold v, in star
+  /// order and then k (removal() read them in a second scan; the phase's
+  /// time, issue 14).
+  void star(int v, std::vector<int>& out, std::vector<int>* outer = nullptr) const;
   bool ring(int t, int a, int b, std::vector<int>& tets, std::vector<int>& verts) const;
   // ---- The phase's time (issue 14, h3): sets of tets or vertices with O(1)
   // membership, emptied in O(1) (a stamp per slot), for star() and the class
@@ -584,6 +594,7 @@ class Improver {
   std::vector<ReplaceOuter> replace_outer_;
   std::vector<int> replace_by_key_, replace_id_;
   std::vector<ReplaceFace> replace_faces_;
+  std::vector<std::pair<std::uint64_t, int>> replace_sorted_;  ///< the new faces' order by sorted key
   std::vector<Tet> replace_link_;
   Marks replace_marks_;
   /// The smallest dihedral angle (degrees) of live tet t, kept from its last
@@ -819,10 +830,14 @@ class Improver {
     int u, rule;
   };
   std::vector<ContractCandidate> contract_candidates_;  ///< contract_vertex()'s
-  /// removal()'s boundary edges at v (other end, facet), the ends along an
-  /// input edge and v's facets (kept to spare allocations).
+  /// removal()'s boundary edges at v (other end, facet of its first
+  /// triangle; per end its count and the facet of its last triangle; end ->
+  /// index), the ends along an input edge and v's facets, and star()'s codes
+  /// of v's boundary triangles (kept to spare allocations).
   mutable std::vector<std::pair<int, int>> removal_ends_;
-  mutable std::vector<int> removal_along_, removal_facets_;
+  mutable std::vector<std::array<int, 2>> removal_end_more_;
+  mutable Marks removal_end_marks_;
+  mutable std::vector<int> removal_along_, removal_facets_, removal_outer_;
   /// Applies an accepted contraction of r.v (fresh and boundary from
   /// contraction()); false when replace() refuses it.
   bool apply_contraction(const Removal& r, const std::vector<Tet>& fresh,
@@ -878,25 +893,44 @@ class Improver {
   bool remove_faces(int t, int k);
   /// The most sandwiched faces one removal considers.
   static constexpr int kMaxSandwich = 16;
+  /// remove_faces()'s choice before its guards (for the tests): the old tets
+  /// (2F, F >= 2) and the new ones (F + 2) of the tree the dynamic programme
+  /// chooses from t's face opposite k, when its worst new tet beats the worst
+  /// of those old tets; else false. With `bound` (remove_faces() asks for
+  /// it) the programme stops at a subtree that cannot matter (see
+  /// improve_faces.cpp): the same answer, old and fresh as without it.
+  bool remove_faces_choice(int t, int k, bool bound, std::vector<int>& old, std::vector<Tet>& fresh);
 
  private:
   struct Sandwich {
-    std::array<int, 3> u;     ///< oriented: (u0, u1, u2, a) is positive
-    std::array<int, 3> key;   ///< u sorted
-    int ta, tb;               ///< the tets (u, a) and (u, b)
-    std::array<int, 3> next;  ///< per edge u_e u_(e+1): the chosen face beyond it, or -1
-    double value;             ///< the best worst new tet of its subtree
+    std::array<int, 3> u;      ///< oriented: (u0, u1, u2, a) is positive
+    std::array<int, 3> key;    ///< u sorted
+    int ta, tb;                ///< the tets (u, a) and (u, b)
+    std::array<int, 3> child;  ///< per edge u_e u_(e+1): the face of the tree beyond it, or -1
+    std::array<int, 3> next;   ///< per edge: the chosen face beyond it (child or -1)
+    double value;              ///< the best worst new tet of its subtree
   };
-  /// The dynamic programme at face f of `faces` (edge `back` leads to its
-  /// parent, -1 at the root): grows the tree beyond its other edges, sets
-  /// next[] and value, returns value.
-  double grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b);
+  /// Grows the tree of sandwiched faces beyond the edges of face f of
+  /// `faces` but `back` (the edge to its parent, -1 at the root), depth
+  /// first, each edge in order, at most kMaxSandwich faces; sets child[].
+  void grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b) const;
+  /// The dynamic programme at face f (after grow_sandwich): sets next[] and
+  /// value from the subtrees beyond f's edges but `back`, returns value. Its
+  /// value V is the smallest over those edges of max(stop, V of the child),
+  /// stop the min-sine of the tet (p, q, b, a) closing the edge pq; the
+  /// child is chosen when its V beats stop. The phase's time (issue 14):
+  /// when V <= `bound` the programme may stop early and return a value at
+  /// most `bound` (next[] then unfinished); when V > bound it returns V and
+  /// sets next[] as without the bound (see improve_faces.cpp).
+  double sandwich_value(std::vector<Sandwich>& faces, int f, int back, int a, int b, double bound);
   /// The face beyond edge e of `face` when it is sandwiched between a and b
   /// (the tets across the faces (p, q, a) and (p, q, b) share their fourth
   /// vertex w) and reads (q, p, w) with a on its positive side: true, with
   /// that face u and its tets na (at a) and nb (at b).
   bool sandwiched(const Sandwich& face, int e, int a, int b, std::array<int, 3>& u, int& na, int& nb) const;
   std::vector<Sandwich> sandwich_faces_;  ///< remove_faces()'s (kept to spare its allocation)
+  std::vector<int> faces_old_;            ///< remove_faces()'s old tets (kept to spare allocations)
+  std::vector<Tet> faces_fresh_;          ///< and its new ones
   /// t's vertex other than x, y and z (-1 if none).
   int other_vertex(int t, int x, int y, int z) const;
 

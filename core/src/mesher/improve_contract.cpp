@@ -122,18 +122,16 @@ bool Improver::removal(int v, Removal& r) const {
   if (v < 0 || v >= int(P_.size()) || removed(v)) return false;
   if (v < int(r_.input_vertex.size()) && r_.input_vertex[v] >= 0) return false;  // input vertices stay
   if (on_vertex_ball(v)) return false;
-  star(v, S);
+  star(v, S, &removal_outer_);
   if (S.empty() || S.size() > kContractMaxStar) return false;  // the work bound (improve.h)
-  // v's boundary triangles: the faces at v of its star's tets that are one.
+  // v's boundary triangles: the faces at v of its star's tets that are one
+  // (star() gives their codes in the order of the tets, then of the faces).
   const std::vector<int>& label = r_.mesh.boundary_facet;
-  for (int t : S)
-    for (int k = 0; k < 4; ++k) {
-      const int n = nb_[t][k];
-      if (tets_[t][k] == v || n >= 0) continue;
-      const int b = -1 - n;
-      if (b >= int(bnd_.size()) || b >= int(label.size()) || label[b] < 0) return false;  // open, or no facet
-      bt.push_back(b);
-    }
+  for (int n : removal_outer_) {
+    const int b = -1 - n;
+    if (b >= int(bnd_.size()) || b >= int(label.size()) || label[b] < 0) return false;  // open, or no facet
+    bt.push_back(b);
+  }
   if (bt.empty()) {
     if (fixed_[v]) return false;  // an open mesh's vertex
     for (int t : S)
@@ -142,24 +140,40 @@ bool Improver::removal(int v, Removal& r) const {
   } else {
     // The boundary edges at v, each with the facets of its two triangles; a
     // feature edge (two facets) is a subsegment of an input edge.
-    std::vector<std::pair<int, int>>& ends = removal_ends_;  // (other end, facet)
+    // The phase's time (issue 14): the ends are grouped through
+    // removal_end_marks_ (end -> its index in `ends`) instead of sorted;
+    // what follows depends only on each end's count and two facets (along
+    // and targets are sorted below, facets here).
+    std::vector<std::pair<int, int>>& ends = removal_ends_;     // (other end, facet), one per end
+    std::vector<std::array<int, 2>>& more = removal_end_more_;  // per end: its count, its second facet
     ends.clear();
+    more.clear();
+    removal_end_marks_.reset(P_.size());
     for (int b : bt)
-      for (int x : bnd_[b])
-        if (x != v) ends.push_back({x, label[b]});
-    std::sort(ends.begin(), ends.end());
+      for (int x : bnd_[b]) {
+        if (x == v) continue;
+        const int at = removal_end_marks_.get(x);
+        if (at < 0) {
+          removal_end_marks_.put(x, int(ends.size()));
+          ends.push_back({x, label[b]});
+          more.push_back({{1, -1}});
+        } else {
+          more[std::size_t(at)] = {{more[std::size_t(at)][0] + 1, label[b]}};
+        }
+      }
     std::vector<int>&along = removal_along_, &facets = removal_facets_;
     along.clear();
     facets.clear();
-    for (std::size_t i = 0; i < ends.size(); i += 2) {
+    for (std::size_t i = 0; i < ends.size(); ++i) {
       // A closed surface: every boundary edge at v lies on exactly two
       // boundary triangles.
-      if (i + 1 >= ends.size() || ends[i + 1].first != ends[i].first ||
-          (i + 2 < ends.size() && ends[i + 2].first == ends[i].first))
+      if (more[i][0] != 2) {
+        targets.clear();  // contract_targets(): none
         return false;
-      if (ends[i].second != ends[i + 1].second) along.push_back(ends[i].first);
+      }
+      if (ends[i].second != more[i][1]) along.push_back(ends[i].first);
       facets.push_back(ends[i].second);
-      facets.push_back(ends[i + 1].second);
+      facets.push_back(more[i][1]);
       targets.push_back(ends[i].first);
     }
     std::sort(facets.begin(), facets.end());
@@ -253,6 +267,11 @@ double Improver::contraction_bound(Removal& r, int u, int& rule) const {
   bool strict = true, relaxed = !std::isnan(r.floor);
   int bad = r.bad_old, holding = 0;
   double worst = HUGE_VAL;
+  // Where both rules refuse a new tet of min-sine 0, they refuse every one
+  // at most 0 (beats() only grows with it): an inverted new tet's min-sine
+  // need not be finished (the phase's time, issue 14; a target that passes
+  // has every new tet positive, so its worst is exact).
+  const bool zero_refused = !beats(0, r.worst_old) && !beats(0, r.floor);
   for (std::size_t k = 0; k < S.size(); ++k) {
     const std::size_t i = (r.witness + k) % S.size();
     Tet T = tets_[S[i]];
@@ -262,7 +281,8 @@ double Improver::contraction_bound(Removal& r, int u, int& rule) const {
     }
     for (int& x : T)
       if (x == v) x = u;
-    const double m = min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
+    const double m = zero_refused ? min_sine_if_positive(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]])
+                                  : min_sine(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]]);
     strict = strict && beats(m, r.worst_old);
     relaxed = relaxed && beats(m, r.floor);
     bad -= m < below;
@@ -419,7 +439,9 @@ std::size_t Improver::contract_pass() {
   std::vector<int> list;
   for (std::size_t t = 0; t < tets_.size(); ++t)
     if (alive(int(t)) && q_[t] < below) list.push_back(int(t));
-  std::stable_sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b]; });
+  // The order of a stable sort by q_ (the list's tets are in increasing
+  // order and their q_ below `below`, so none is NaN): ties by index.
+  std::sort(list.begin(), list.end(), [&](int a, int b) { return q_[a] < q_[b] || (q_[a] == q_[b] && a < b); });
   for (int t : list) {
     if (!poll()) break;
     if (!alive(t) || !(q_[t] < below)) continue;

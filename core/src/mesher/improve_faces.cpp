@@ -37,19 +37,13 @@ bool Improver::sandwiched(const Sandwich& face, int e, int a, int b, std::array<
   return u[0] == q && u[1] == p;
 }
 
-double Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b) {
+void Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, int a, int b) const {
   // Edge e of face (u0, u1, u2) runs from u_e to u_(e+1); the face beyond it
-  // shares the edge reversed. `back` is the edge to the parent (-1 at the
-  // root).
-  double value = HUGE_VAL;
+  // shares the edge reversed. Which faces join does not depend on any
+  // min-sine, so the tree is grown before the programme runs on it.
   for (int e = 0; e < 3; ++e) {
+    faces[f].child[e] = -1;
     if (e == back) continue;
-    const int p = faces[f].u[e], q = faces[f].u[(e + 1) % 3];
-    // Stopping here leaves the edge on the polygon's boundary: the new tet
-    // (p, q, b, a) around the new edge ab.
-    const double stop = min_sine(P_[p], P_[q], P_[b], P_[a]);
-    double cont = -HUGE_VAL;
-    int child = -1;
     std::array<int, 3> u;
     int na, nb;
     if (int(faces.size()) < kMaxSandwich && sandwiched(faces[f], e, a, b, u, na, nb)) {
@@ -58,20 +52,47 @@ double Improver::grow_sandwich(std::vector<Sandwich>& faces, int f, int back, in
       bool seen = false;
       for (const Sandwich& g : faces) seen = seen || g.key == key;
       if (!seen) {
-        child = int(faces.size());
-        faces.push_back({u, key, na, nb, {{-1, -1, -1}}, 0});
-        cont = grow_sandwich(faces, child, 0, a, b);
+        const int child = int(faces.size());
+        faces[f].child[e] = child;
+        faces.push_back({u, key, na, nb, {{-1, -1, -1}}, {{-1, -1, -1}}, 0});
+        grow_sandwich(faces, child, 0, a, b);
       }
     }
+  }
+}
+
+double Improver::sandwich_value(std::vector<Sandwich>& faces, int f, int back, int a, int b, double bound) {
+  // The bound (beyond Shewchuk's programme; the phase's time, issue 14): by
+  // induction on the subtree, sandwich_value(f, bound) is V(f) when V(f) >
+  // bound, else some value <= bound. At edge e the child is asked with
+  // max(bound, stop): when it answers a value c <= max(bound, stop), either
+  // stop >= bound and the child's V <= stop, so the edge stops (as without
+  // the bound) and max(stop, c) = stop is exact; or stop < bound and
+  // max(stop, V of the child) <= bound, so V(f) <= bound as the early return
+  // says. So a face whose V beats its bound is computed exactly, and every
+  // face chosen from it beats its own bound.
+  double value = HUGE_VAL;
+  for (int e = 0; e < 3; ++e) {
+    faces[f].next[e] = -1;
+    if (e == back) continue;
+    const int p = faces[f].u[e], q = faces[f].u[(e + 1) % 3];
+    // Stopping here leaves the edge on the polygon's boundary: the new tet
+    // (p, q, b, a) around the new edge ab.
+    const double stop = min_sine(P_[p], P_[q], P_[b], P_[a]);
+    const int child = faces[f].child[e];
+    const double cont = child >= 0 ? sandwich_value(faces, child, 0, a, b, std::max(bound, stop)) : -HUGE_VAL;
     // Continue only when strictly better: fewer tets on a tie.
     faces[f].next[e] = cont > stop ? child : -1;
     value = std::min(value, std::max(stop, cont));
+    if (value <= bound) break;
   }
   faces[f].value = value;
   return value;
 }
 
-bool Improver::remove_faces(int t, int k) {
+bool Improver::remove_faces_choice(int t, int k, bool bound, std::vector<int>& old, std::vector<Tet>& fresh) {
+  old.clear();
+  fresh.clear();
   const int n = nb_[t][k];
   if (n < 0) return false;
   const int a = tets_[t][k];
@@ -81,22 +102,24 @@ bool Improver::remove_faces(int t, int k) {
   std::array<int, 3> key = u0;
   std::sort(key.begin(), key.end());
   std::vector<Sandwich>& faces = sandwich_faces_;
-  faces.assign(1, {u0, key, t, n, {{-1, -1, -1}}, 0});
-  // The phase's time (issue 14; the same outcome): without a sandwiched face
-  // beyond any edge of the root, the tree is the root alone, two old tets
-  // (the 2-3 flip, refused below), so its min-sines are not computed.
-  bool grows = false;
-  for (int e = 0; e < 3 && !grows; ++e) {
-    std::array<int, 3> u;
-    int na, nb;
-    grows = sandwiched(faces[0], e, a, b, u, na, nb);
-  }
-  if (!grows) return false;
+  faces.assign(1, {u0, key, t, n, {{-1, -1, -1}}, {{-1, -1, -1}}, 0});
   grow_sandwich(faces, 0, -1, a, b);
+  // Without a face beyond the root, the tree is the root alone, two old
+  // tets (the 2-3 flip, refused below), so no min-sine is computed.
+  if (faces.size() < 2) return false;
+  // Any choice's old tets are among the tree's: their worst is at least
+  // `least`, so a programme whose worst is at most `least` is refused below
+  // whichever faces it would choose, and the bound `least` decides nothing
+  // that is kept (sandwich_value). Without `bound`: the full programme.
+  double least = -HUGE_VAL;
+  if (bound) {
+    least = HUGE_VAL;
+    for (const Sandwich& g : faces) least = std::min({least, q_[g.ta], q_[g.tb]});
+  }
+  const double value = sandwich_value(faces, 0, -1, a, b, least);
+  if (!(value > least)) return false;
   // The chosen faces (a tree from the root) and the polygon's boundary
   // edges, each giving the new tet (p, q, b, a).
-  std::vector<int> old;
-  std::vector<Tet> fresh;
   std::vector<int> todo = {0};
   double worst_old = HUGE_VAL;
   while (!todo.empty()) {
@@ -116,7 +139,18 @@ bool Improver::remove_faces(int t, int k) {
   }
   // One face is the 2-3 flip (flip23); the dynamic programme's worst must
   // beat the old set's.
-  if (old.size() < 4 || !(faces[0].value > worst_old)) return false;
+  if (old.size() < 4 || !(value > worst_old)) {
+    old.clear();
+    fresh.clear();
+    return false;
+  }
+  return true;
+}
+
+bool Improver::remove_faces(int t, int k) {
+  std::vector<int>& old = faces_old_;
+  std::vector<Tet>& fresh = faces_fresh_;
+  if (!remove_faces_choice(t, k, true, old, fresh)) return false;
   double w;
   if (!accept(old, fresh, w) || !replace(old, fresh, {}, -1, true)) return false;
   ++st_.multi_face_removals;
