@@ -51,7 +51,9 @@
 // "stalled" (the runaway guard or the stuck-step watchdog); for an
 // invalid input, an exit code other than 2 or a message without the kind.
 // Suspicious (reported, not a defect): above 60 s, above 2 million tets,
-// exit 3 at the vertex limit. Prints a table (Markdown) and a summary line.
+// exit 3 at the vertex limit, classes that `measure` recounts otherwise when
+// the written points' rounding matters (the tolerances above 1e-8). Prints a
+// table (Markdown) and a summary line.
 //
 // Usage: node examples/node/hard_inputs.mjs --out DIR [--count N] [--seed S]
 //          [--smooth M] [--run BIN] [--timeout S] [--no-improve-every K]
@@ -529,16 +531,21 @@ function convexHull(pts) {
     for (const [k, [a, b]] of edges) if (!edges.has(`${b},${a}`)) next.push([a, b, p]);
     faces = next;
   }
-  // Keep only the points used, renumbered.
+  return compacted(pts, faces);
+}
+
+/// The points that the faces use (in the order they are first used) and the
+/// faces renumbered to them.
+function compacted(points, faces) {
   const map = new Map();
-  const points = [];
+  const used = [];
   for (const f of faces)
     for (const v of f)
       if (!map.has(v)) {
-        map.set(v, points.length);
-        points.push(pts[v]);
+        map.set(v, used.length);
+        used.push(points[v]);
       }
-  return { points, faces: faces.map((f) => f.map((v) => map.get(v))) };
+  return { points: used, faces: faces.map((f) => f.map((v) => map.get(v))) };
 }
 
 function genHull(k) {
@@ -761,17 +768,7 @@ function clipByPlane(m, d, side, gap) {
   } catch {
     return null;
   }
-  // Keep only the points used, renumbered.
-  const all = [...faces, ...capFaces];
-  const map = new Map();
-  const used = [];
-  for (const f of all)
-    for (const v of f)
-      if (!map.has(v)) {
-        map.set(v, used.length);
-        used.push(points[v]);
-      }
-  return { points: used, faces: all.map((f) => f.map((v) => map.get(v))) };
+  return compacted(points, [...faces, ...capFaces]);
 }
 
 /// The smallest and largest internal dihedral angle (degrees) at the edges
@@ -1325,7 +1322,13 @@ for (const { m, file } of rows) {
           const j = JSON.parse(meas.stdout);
           if (j.inverted > 0) r.defects.push(`${j.inverted} inverted tets`);
           if (j.orientation_flipped) r.defects.push('tets oriented the wrong way');
-          if (j.classes_match_stats === false) r.defects.push('measure classes differ from the statistics');
+          // Far from the origin the written points' rounding may move a tet
+          // across rho0 or theta (a model 2e-3 across at 1e6: R/l 2.2000007
+          // written): then suspicious, not a defect.
+          if (j.classes_match_stats === false) {
+            if (volumeTolerance > 1e-8) r.suspicious.push('measure classes differ (written points rounded)');
+            else r.defects.push('measure classes differ from the statistics');
+          }
           if (!(j.relative_volume_error < volumeTolerance))
             r.defects.push(`measure volume error ${j.relative_volume_error} (tolerance ${volumeTolerance.toExponential(1)})`);
         }
