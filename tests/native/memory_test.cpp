@@ -297,10 +297,11 @@ TEST(Memory, LabelsInTheCellsAreTheCellGraphsLabels) {
 // before) and after PUMP's weight changes. Wherever the fresh fill is free
 // of the order, every wall is a facet and the labels before were such a
 // fill's, the completion must hold (a wrong rule for the new cells fails
-// its check) and give the fill's labels, kExcludedOdd read as 0.
+// its check) and give the fill's labels, kExcludedOdd read as 0; and a check that
+// passes implies even walls (extract.cpp, even_walls).
 TEST(Memory, CompletedLabelsAreAFreshFillsAfterInsertionsAndWeightChanges) {
   std::vector<std::string> files;
-  for (const char* name : {"spike.off", "edge_facet.off", "thin_wedge.off", "bracket.off"})
+  for (const char* name : {"spike.off", "edge_facet.off", "thin_wedge.off", "bracket.off", "slit.off"})
     files.push_back(std::string(WQMESH_EXAMPLE_MODELS) + "/" + name);
   const std::string shared = WQMESH_SHARED_MODELS;
   if (!shared.empty())
@@ -332,6 +333,9 @@ TEST(Memory, CompletedLabelsAreAFreshFillsAfterInsertionsAndWeightChanges) {
       const bool valid = order_free && sub.conforms();
       const auto on_p = [&](int v) { return sub.on_p(v); };
       const bool ok = tri.complete_labels(on_p, wall, walls.size(), flat);
+      // A passing check implies even walls (label_cells_in_place asks
+      // even_walls only when the check fails).
+      if (ok) EXPECT_TRUE(order_free) << "after " << m.vertices().size() << " vertices";
       if (valid && valid_before) {
         ++checked;
         after_rule7 += rule7;

@@ -503,6 +503,40 @@ TEST(Triangulation, VisitLabelledWithoutTheNeighboursVisitsTheSameCells) {
       1, [](const Tet&) {}, [&](std::size_t n) { return (polled += n) < 1024; }));
 }
 
+// complete_labels' check fails on walls with a free edge (an edge in an odd
+// number of walls: here one facet, then the fan of facets around a vertex
+// on one side), whatever the labels: extract.cpp's label_cells_in_place
+// asks even_walls only after a failed check, relying on this.
+TEST(Triangulation, CompleteLabelsFailsOnWallsWithAFreeEdge) {
+  RegularTriangulation t;
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 200; ++i) t.insert({u(rng), u(rng), u(rng)}, 0, i - 1);
+  std::vector<Tet> cells = t.finite_cells();
+  ASSERT_FALSE(cells.empty());
+  const auto sorted3 = [](std::array<int, 3> x) {
+    std::sort(x.begin(), x.end());
+    return x;
+  };
+  // One facet; then two facets of one cell (sharing an edge: the other
+  // four edges free).
+  const Tet& c = cells[cells.size() / 2];
+  for (int n = 1; n <= 2; ++n) {
+    SCOPED_TRACE(n);
+    std::vector<std::array<int, 3>> walls;
+    for (int k = 0; k < n; ++k) walls.push_back(sorted3({{c[(k + 1) % 4], c[(k + 2) % 4], c[(k + 3) % 4]}}));
+    std::sort(walls.begin(), walls.end());
+    const auto wall = [&](int a, int b, int d) {
+      return std::binary_search(walls.begin(), walls.end(), sorted3({{a, b, d}}));
+    };
+    const auto all = [](int) { return true; };
+    for (int round = 0; round < 2; ++round) {  // fresh labels, then the labels a failed call left
+      EXPECT_FALSE(t.complete_labels(all, wall, walls.size(), {}));
+      if (round == 0) EXPECT_TRUE(t.flood_labels(all, wall, {}));
+    }
+  }
+}
+
 // A fan: the apex 0 above a finely split base edge. The capped star walk
 // gives up on the apex and not on a base point; edge_triangles finds the one
 // or two triangles on an edge from either end, and none for a non-edge.

@@ -92,7 +92,6 @@ bool label_cells_in_place(const Domain& dom, const Subcomplex& sub, const Regula
   std::vector<Tri> walls;
   for (const Subfacet& h : sub.subfacets())
     if (!dom.is_box_facet(h.facet)) walls.push_back(sorted(h.v));
-  if (!even_walls(walls)) return false;
   // A sorted list, not a hash set: the same answers in a third of the memory.
   std::sort(walls.begin(), walls.end());
   walls.erase(std::unique(walls.begin(), walls.end()), walls.end());
@@ -115,8 +114,19 @@ bool label_cells_in_place(const Domain& dom, const Subcomplex& sub, const Regula
   // the triangulation: the labels are free of the order when those are all
   // of them (a run that conforms; the rule 7 passes of REFINE need not) and
   // even_walls holds.
+  // even_walls is asked only when the check fails (beyond the paper, issue
+  // 15: its sort of every wall's edges was about 1% of a run), since labels
+  // that pass the check imply it: around each edge the cells form a cycle
+  // along which the parity changes an even number of times, and the check
+  // says it changes exactly at the walls, each a facet (a wall listed twice
+  // added two to each of its edges). When it fails, the answer is false as
+  // before, only with the cells made since labelled by the failed
+  // completion: a later call's check passes only on the one labelling free
+  // of the order, which a flood fill gives otherwise, so the later answers
+  // and labels are the same.
   if (tri.complete_labels(on_p, is_wall, walls.size(), flat, poll)) return true;
   if (scan && meter.stopped()) return false;
+  if (!even_walls(walls)) return false;
   std::size_t faces = 0;
   if (!tri.flood_labels(on_p, is_wall, flat, poll, &faces)) return false;
   return faces == walls.size();
