@@ -89,6 +89,49 @@ TEST(RefineUpkeep, SegmentEndsRecordAgreesWithTheSubsegmentMap) {
   EXPECT_GT(refused, 0u);
 }
 
+// Queues::rule5_needs_split, which asks Subcomplex::guarded only of a
+// present, encroached subfacet, answers as rule 5 reads (guarded: missing
+// from Del V; else encroached, a missing one counted as encroached), for
+// every subfacet after every insertion of REFINE; the case that needs
+// guarded (present, encroached) and both others do occur.
+TEST(RefineUpkeep, Rule5AnswersAsGuardedFirst) {
+  const std::vector<std::string> files =
+      example_models({"slit.off", "thin_wedge.off", "spike.off", "edge_facet.off", "bracket.off"});
+  ASSERT_FALSE(files.empty()) << "examples/models is missing";
+  std::size_t missing = 0, encroached = 0, guarded = 0, clear = 0;
+  for (const std::string& file : files) {
+    SCOPED_TRACE(file);
+    MesherRun run(load(file));
+    mesher::Mesher& m = run.m;
+    const mesher::Subcomplex& sub = m.subcomplex();
+    const mesher::Queues queues(m.domain(), m.triangulation(), sub, m.meter());
+    bool refine = false;
+    m.inserter().observer = [&](const mesher::Insertion&, int rule, int id) {
+      refine = refine || rule >= 4;
+      if (id < 0 || !refine) return;
+      for (const mesher::Subfacet& h : sub.subfacets()) {
+        const bool g = sub.guarded(h), present = sub.subfacet_present(h);
+        const bool paper = g ? !present : sub.subfacet_encroached(h);
+        ASSERT_EQ(queues.rule5_needs_split(h), paper) << h.v[0] << " " << h.v[1] << " " << h.v[2];
+        bool gone = false;
+        const bool e = sub.subfacet_encroached(h, &gone);
+        ASSERT_EQ(gone, !present);
+        missing += gone;
+        encroached += e && !gone;
+        guarded += e && !gone && g;
+        clear += !e;
+      }
+    };
+    m.initialize();
+    m.conform();
+    m.refine();
+  }
+  EXPECT_GT(missing, 0u);
+  EXPECT_GT(encroached, 0u);
+  EXPECT_GT(guarded, 0u);
+  EXPECT_GT(clear, 0u);
+}
+
 // Queues::SliverRecord (rule 7's cells with an angle at theta or less)
 // brought up to date from the recorded cells that live on and the stars of
 // the vertices inserted since gives the same cells, angles and candidates

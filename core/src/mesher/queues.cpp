@@ -362,7 +362,15 @@ bool Queues::rule2_needs_split(const Subfacet& h) const {
 }
 
 bool Queues::rule5_needs_split(const Subfacet& h) const {
-  return sub_.guarded(h) ? !sub_.subfacet_present(h) : sub_.subfacet_encroached(h);
+  // Rule 5 splits a guarded subfacet when it is missing from Del V, a
+  // non-guarded one when it is missing or encroached: so a missing h needs
+  // a split and a present one that no vertex encroaches does not, whatever
+  // guarded(h) says, and guarded(h) (a search of the protecting balls'
+  // grid, 3-4% of REFINE when asked first for every test; issue 15) is
+  // asked only of a present, encroached h. The same answer as asking it
+  // first.
+  bool missing = false;
+  return sub_.subfacet_encroached(h, &missing) && (missing || !sub_.guarded(h));
 }
 
 void Queues::split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule) {

@@ -38,6 +38,9 @@ class Queues {
   /// The upkeep of an insertion: queues the features and (in REFINE) the
   /// cells around the new vertex v that a rule may have to split.
   void enqueue_around(int v);
+  /// Rule 5: a non-guarded subfacet that is encroached, or a guarded one that
+  /// does not appear in Del V.
+  bool rule5_needs_split(const Subfacet& h) const;
   /// Rule 6 for a queued tet; whether a point was inserted (refine.cpp).
   using Rule6 = std::function<bool(const Tet& t, CellRef ref)>;
   /// Applies the queued rules until the queues are empty: rules 1-2, or with
@@ -85,9 +88,6 @@ class Queues {
   /// Rule 2: a subfacet of B that is encroached, or one of the input that does
   /// not appear in Del V.
   bool rule2_needs_split(const Subfacet& h) const;
-  /// Rule 5: a non-guarded subfacet that is encroached, or a guarded one that
-  /// does not appear in Del V.
-  bool rule5_needs_split(const Subfacet& h) const;
   /// SPLITF(h) for rule 2 or 5; h is queued again when SPLITF split a
   /// subsegment instead (at most Caps::kRetries times).
   void split_subfacet(Inserter& inserter, const Subfacet& h, Rule rule);

@@ -260,9 +260,11 @@ bool Subcomplex::segment_encroached_update(const Subsegment& e) const {
 
 bool Subcomplex::subfacet_present(const Subfacet& h) const { return tri_.is_facet(h.v[0], h.v[1], h.v[2]); }
 
-bool Subcomplex::subfacet_encroached(const Subfacet& h) const {
+bool Subcomplex::subfacet_encroached(const Subfacet& h, bool* missing) const {
   Tet c1, c2;
-  if (!tri_.facet_cells(h.v[0], h.v[1], h.v[2], c1, c2)) return true;
+  const bool present = tri_.facet_cells(h.v[0], h.v[1], h.v[2], c1, c2);
+  if (missing) *missing = !present;
+  if (!present) return true;
   // If a vertex lies inside the diametric ball of a Delaunay triangle, the
   // vertex opposite it in one of its two cells does (the spheres through the
   // triangle form a pencil, the power of a point is affine along it).

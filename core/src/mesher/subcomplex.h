@@ -237,7 +237,9 @@ class Subcomplex {
   /// itself in ball_entered when it queued e (Queues::queue).
   bool segment_encroached_update(const Subsegment& e) const;
   bool subfacet_present(const Subfacet& h) const;
-  bool subfacet_encroached(const Subfacet& h) const;  ///< by a vertex (strictly inside)
+  /// By a vertex (strictly inside its diametric ball), or missing from Del
+  /// V; `missing`, when given, says which.
+  bool subfacet_encroached(const Subfacet& h, bool* missing = nullptr) const;
   /// Subsegments and subfacets encroached by a point, among the features of
   /// the cells the point conflicts with (see the argument in subcomplex.cpp).
   /// `zone`, when given, gets the finite vertices of those cells (sorted,
