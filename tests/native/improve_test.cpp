@@ -1251,6 +1251,78 @@ TEST(Improve, AFlipThatShortensLvSoThatATetBesideItLosesNearIsRefused) {
 // A run of model f without the phase (MeshOptions::improve = false) and an
 // Improver on its mesh with the classes set (the protecting balls, theta),
 // as improve_phase() makes it. Held by pointer: the Improver refers to r.
+/// A quadrilateral base p0 p1 p2 p3 on z = 0 (facet 0, input corners) fanned
+/// from the Steiner vertex v, under the apex e (the sides facets of their
+/// own). v lies close to edge p1 p2: the tet (v, p1, p2, e) is skinny (R/l
+/// 14.4, min-sine 0.046) and so is (v, p0, p1, e) (R/l 2.39).
+Config fan_near_an_edge() {
+  Config c;
+  c.r.mesh.vertices = {{{0, 0, 0}},     {{0.3, -0.08, 0}},  {{1, 0, 0}},
+                       {{0.5, 0.8, 0}}, {{0.45, 0.2, 0.6}}, {{0.6, -0.03, 0}}};
+  const int v = 5, e = 4;
+  for (int i = 0; i < 4; ++i) c.add_tet(v, i, (i + 1) % 4, e);
+  c.close({{{v, 0, 1}, 0}, {{v, 1, 2}, 0}, {{v, 2, 3}, 0}, {{v, 3, 0}, 0}});
+  for (int x = 0; x < 5; ++x) c.r.input_vertex[x] = x;
+  return c;
+}
+
+TEST(Improve, AContractionThatLeavesAViolationOnASkinnyBoundaryTriangleIsRefused) {
+  // Contracting v onto p0 makes the boundary triangle (p0, p1, p2), whose
+  // circumradius is 4.4 times its shortest edge: every tet on it is skinny
+  // whatever its apex, a violation no later change that keeps the boundary
+  // removes (capsule-7's one violation after the phase, BENCHMARKS.md,
+  // "Session 16 (2026-12-07), h5"). The contraction raises the star's worst
+  // min-sine (0.046 -> 0.138) and leaves fewer violations (2 -> 1), so only
+  // pins_violation() refuses it; onto p1 it leaves none and is taken.
+  const ProtectingBall far{{{5, 5, 5}}, 0.1, true};
+  const mesher::ProtectingBalls balls = index_of({far});
+  const int v = 5, p0 = 0;
+  {
+    Config c = fan_near_an_edge();
+    ASSERT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 2u);
+    const double before = c.worst();
+    // The change itself, without the classes: taken by the min-sine rule.
+    Improver im(c.r, 2.2, 0);
+    ASSERT_TRUE(im.contract(v, p0));
+    im.finish();
+    ASSERT_GT(c.worst(), before);
+    const MeshClasses after = classify_mesh(c.r.mesh, {far}, 2.2, 3);
+    ASSERT_EQ(after.violations, 1u);
+    // The violation left stands on a boundary triangle skinny by itself.
+    const auto& P = c.r.mesh.vertices;
+    bool pinned = false;
+    for (const auto& b : c.r.mesh.boundary) {
+      const Point3 n = invariants::cross(invariants::sub(P[b[1]], P[b[0]]), invariants::sub(P[b[2]], P[b[0]]));
+      const double ab = geometry::dist2(P[b[0]], P[b[1]]), bc = geometry::dist2(P[b[1]], P[b[2]]),
+                   ca = geometry::dist2(P[b[2]], P[b[0]]);
+      pinned = pinned || ab * bc * ca > 4 * 2.2 * 2.2 * std::min({ab, bc, ca}) * invariants::dot(n, n);
+    }
+    ASSERT_TRUE(pinned);
+  }
+  {
+    Config c = fan_near_an_edge();
+    Improver im(c.r, 2.2, 0);
+    im.set_classes(&balls, 3);
+    EXPECT_FALSE(im.contract(v, p0));
+    ASSERT_TRUE(im.contract_vertex(v));
+    im.finish();
+    EXPECT_EQ(classify_mesh(c.r.mesh, {far}, 2.2, 3).violations, 0u);
+    expect_positive(c.r);
+  }
+  {
+    // A protecting ball around the skinny tet's circumcentre makes it near a
+    // small input angle (classify.h (a)): then the contraction is taken.
+    Config c = fan_near_an_edge();
+    const auto& P = c.r.mesh.vertices;
+    double r2;
+    const ProtectingBall around{geometry::circumcenter(P[0], P[1], P[2], P[4], r2), 0.05, true};
+    const mesher::ProtectingBalls near = index_of({around});
+    Improver im(c.r, 2.2, 0);
+    im.set_classes(&near, 3);
+    EXPECT_TRUE(im.contract(v, p0));
+  }
+}
+
 struct Unimproved {
   MeshOptions opt;
   MeshResult r;

@@ -752,7 +752,8 @@ class Improver {
   // that facet (on the facet or on its boundary); v on an input edge -> one
   // of its two neighbours along that edge. The new boundary triangles keep
   // their facet labels and must not fold in their facet (exact 2D
-  // orientation), the input edge's subsegments still chain from end to end,
+  // orientation) nor pin a violation (pins_violation()), the input edge's
+  // subsegments still chain from end to end,
   // the link condition holds, and the change passes accept() like every
   // other (strictly better worst min-sine of the star, exact orientation,
   // the class, skinny and max_size guards).
@@ -825,6 +826,22 @@ class Improver {
   double contraction_bound(Removal& r, int u, int& rule) const;
   double contraction_rest(Removal& r, int u, int rule, std::vector<Tet>& fresh,
                           std::vector<std::pair<int, std::array<int, 3>>>& boundary) const;
+  /// Beyond the paper and Stellar (issue 14): whether a new boundary
+  /// triangle of `boundary` (a contraction's; {-1, -1, -1} entries are
+  /// deletions) is skinny by itself, its circumradius above rho0 times its
+  /// shortest edge, while the tet of `fresh` on it is not near a small input
+  /// angle (classify.h, with the L_v before the change). Every tet on such a
+  /// triangle has R/l above rho0 (a tet's circumradius is at least that of
+  /// each face, its shortest edge at most the face's), so no flip, smoothing
+  /// or interior insertion removes the violation while the triangle stays,
+  /// and the phase replaces a boundary triangle only by flip22() (exactly
+  /// coplanar points, which Steiner points on a facet not along the axes are
+  /// not), insert_boundary() or a contraction. On capsule-7 (BENCHMARKS.md,
+  /// "Session 16 (2026-12-07), h5") a contraction traded a sliver for such
+  /// a tet, the one violation the phase left. contraction_rest() refuses
+  /// such a change. False without set_classes.
+  bool pins_violation(const std::vector<std::pair<int, std::array<int, 3>>>& boundary,
+                      const std::vector<Tet>& fresh) const;
   struct ContractCandidate {
     double worst;
     int u, rule;

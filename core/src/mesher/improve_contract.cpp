@@ -113,6 +113,29 @@ bool Improver::on_vertex_ball(int v) const {
   return ball_point_[v] == 1;
 }
 
+bool Improver::pins_violation(const std::vector<std::pair<int, Tri>>& boundary, const std::vector<Tet>& fresh) const {
+  if (!classifier_) return false;
+  for (const auto& entry : boundary) {
+    const Tri& n = entry.second;
+    if (n[0] < 0) continue;  // a deletion
+    const Point3 &a = P_[n[0]], &b = P_[n[1]], &c = P_[n[2]];
+    // R = |ab| |bc| |ca| / (2 |ab x ac|) > rho0 l, squared (+, -, *, /
+    // only: native and wasm decide alike).
+    const double ab = geometry::dist2(a, b), bc = geometry::dist2(b, c), ca = geometry::dist2(c, a);
+    const Point3 normal = geometry::cross(geometry::sub(b, a), geometry::sub(c, a));
+    const double l2 = std::min({ab, bc, ca});
+    if (!(ab * bc * ca > 4 * rho_ * rho_ * l2 * geometry::dot(normal, normal))) continue;
+    for (const Tet& T : fresh) {
+      int shared = 0;
+      for (int x : T) shared += x == n[0] || x == n[1] || x == n[2];
+      if (shared < 3) continue;
+      if (!classifier_->near(P_[T[0]], P_[T[1]], P_[T[2]], P_[T[3]], {{L2_[T[0]], L2_[T[1]], L2_[T[2]], L2_[T[3]]}}))
+        return true;
+    }
+  }
+  return false;
+}
+
 bool Improver::removal(int v, Removal& r) const {
   r.v = v;
   std::vector<int>&S = r.star, &bt = r.bnd, &targets = r.targets;
@@ -347,6 +370,9 @@ double Improver::contraction_rest(Removal& r, int u, int rule, std::vector<Tet>&
     if (projected_orientation(a, c, d, r.drop[i]) != r.sign[i]) return -HUGE_VAL;
     boundary.push_back({b, n});
   }
+  // Beyond the paper (issue 14): no new boundary triangle may pin a
+  // violation (improve.h, pins_violation).
+  if (pins_violation(boundary, fresh)) return -HUGE_VAL;
   // The strict rule by the star's worst; the relaxed one (in a pass only):
   // fewer tets under the target in the star, and every new tet better than
   // the worst tet of the whole mesh. The floor in min-sine and in the
