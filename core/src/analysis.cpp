@@ -212,14 +212,8 @@ class Analyzer {
   // ---- boxes (section 2) ---------------------------------------------------------
   void boxes(Analysis& a) const {
     if (plc_.vertices.empty()) return;
-    Box b{plc_.vertices[0], plc_.vertices[0]};
-    for (const auto& p : plc_.vertices)
-      for (int q = 0; q < 3; ++q) {
-        b.lo[q] = std::min(b.lo[q], p[q]);
-        b.hi[q] = std::max(b.hi[q], p[q]);
-      }
-    a.input_box = b;
-    a.bounding_box = grown_box(b, options_.box_margin);
+    a.input_box = vertex_box(plc_);
+    a.bounding_box = grown_box(a.input_box, options_.box_margin);
   }
 
   int other_end(int e, int u) const { return plc_.edges[e].a == u ? plc_.edges[e].b : plc_.edges[e].a; }

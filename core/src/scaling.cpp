@@ -37,13 +37,10 @@ Normalisation normalisation(const PLC& plc) {
   Normalisation n;
   n.exponent = normalisation_exponent(plc);
   if (plc.vertices.empty()) return n;
+  const Box box = vertex_box(plc);
   Point3 centre{{0, 0, 0}};
   for (int q = 0; q < 3; ++q) {
-    double lo = plc.vertices[0][q], hi = lo;
-    for (const Point3& p : plc.vertices) {
-      lo = std::min(lo, p[q]);
-      hi = std::max(hi, p[q]);
-    }
+    const double lo = box.lo[q], hi = box.hi[q];
     const double big = std::max(std::fabs(lo), std::fabs(hi));
     if (!(big >= DBL_MIN) || !std::isfinite(big)) continue;
     // u: the unit in the last place of the axis's largest coordinate (a
@@ -67,11 +64,9 @@ Normalisation normalisation(const PLC& plc) {
 }
 
 PLC normalised_plc(const PLC& plc, const Normalisation& n) {
-  PLC out = n.exponent != 0 ? scaled_plc(plc, -n.exponent) : plc;
-  if (!n.translated()) return out;
-  for (std::size_t v = 0; v < plc.vertices.size(); ++v)
-    for (int q = 0; q < 3; ++q)
-      if (n.centre[q] != 0) out.vertices[v][q] = std::ldexp(plc.vertices[v][q] - n.centre[q], -n.exponent);
+  PLC out = plc;
+  for (Point3& p : out.vertices)
+    for (int q = 0; q < 3; ++q) p[q] = std::ldexp(p[q] - n.centre[q], -n.exponent);  // x - 0 is x
   return out;
 }
 
@@ -103,6 +98,16 @@ void analysis_to_normalised(Analysis& a, const Normalisation& n) {
   if (n.translated()) a.bounding_box = grown_box(a.input_box, a.box_margin);
 }
 
+Box vertex_box(const PLC& plc) {
+  Box b{plc.vertices[0], plc.vertices[0]};
+  for (const Point3& p : plc.vertices)
+    for (int q = 0; q < 3; ++q) {
+      b.lo[q] = std::min(b.lo[q], p[q]);
+      b.hi[q] = std::max(b.hi[q], p[q]);
+    }
+  return b;
+}
+
 Box grown_box(const Box& input_box, double box_margin) {
   const Box& b = input_box;
   const double extent = std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
@@ -113,14 +118,6 @@ Box grown_box(const Box& input_box, double box_margin) {
     B.hi[q] = b.hi[q] + grow;
   }
   return B;
-}
-
-PLC scaled_plc(const PLC& plc, int s) {
-  PLC out = plc;
-  if (s != 0)
-    for (Point3& p : out.vertices)
-      for (double& x : p) x = std::ldexp(x, s);
-  return out;
 }
 
 double plc_volume_scaled(const PLC& plc, int& exponent) {
@@ -195,12 +192,8 @@ void check_representable(const PLC& plc, const Normalisation& n, double box_marg
     }
   // The boxes, in normalised coordinates (no overflow there), then in the
   // input's (lo and hi are exact differences to c, see normalisation).
-  Point3 lo = plc.vertices[0], hi = lo;
-  for (const Point3& p : plc.vertices)
-    for (int q = 0; q < 3; ++q) {
-      lo[q] = std::min(lo[q], p[q]);
-      hi[q] = std::max(hi[q], p[q]);
-    }
+  const Box box = vertex_box(plc);
+  const Point3 &lo = box.lo, &hi = box.hi;
   Point3 los, his;  // normalised
   double extent = 0;
   for (int q = 0; q < 3; ++q) {

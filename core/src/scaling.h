@@ -69,6 +69,10 @@ void analysis_to_input(Analysis& a, const Normalisation& n);
 /// input box (grown_box with a.box_margin), as analyze made it.
 void analysis_to_normalised(Analysis& a, const Normalisation& n);
 
+/// The box of the vertices of `plc` (which has at least one): the input box
+/// of section 2.
+Box vertex_box(const PLC& plc);
+
 /// B (section 2): the box `input_box` grown on every side by `box_margin`
 /// times its largest extent (analyze's formula).
 Box grown_box(const Box& input_box, double box_margin);
@@ -84,10 +88,6 @@ Box grown_box(const Box& input_box, double box_margin);
 /// coordinate, the axis, or the volume (as a decimal power when it is not a
 /// double).
 void check_representable(const PLC& plc, const Normalisation& n, double box_margin);
-
-/// `plc` with every coordinate multiplied by 2^s (exact when s = -E and
-/// check_representable passed; normals do not change).
-PLC scaled_plc(const PLC& plc, int s);
 
 /// The volume enclosed by `plc` as v * 2^exponent (v computed on the input
 /// scaled by 2^-E, so it neither overflows nor underflows).

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <unordered_set>
 
@@ -50,9 +51,11 @@ void Refine::run() {
     if (b.radius > 0) smallest = std::min(smallest, b.radius);
   const ScopedObserver scope(ins_, [this, smallest](const Insertion& ins, int rule, int id) {
     if (id < 0) return;
+    // Passed by reference: a std::function of this closure (three
+    // captures) would allocate on every insertion.
+    const auto spacing = [&] { return nearest_neighbour(tri_, id) / smallest; };
     meter_.refine_insertion(
-        static_cast<Rule>(rule), verts_.size(), [&] { return input_feature(ins); },
-        [&] { return nearest_neighbour(tri_, id) / smallest; });
+        static_cast<Rule>(rule), verts_.size(), [&] { return input_feature(ins); }, std::cref(spacing));
   });
   queues_.fill(true);
   if (!process_queues()) return;
